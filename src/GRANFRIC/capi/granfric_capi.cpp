@@ -1,0 +1,50 @@
+// GRANFRIC core as a C ABI for the Python tools (ctypes): the same collision law the LAMMPS
+// styles use. Vectors are double[3]; see core/collision.h for conventions.
+#include "core/collision.h"
+
+using namespace granfric;
+
+extern "C" {
+
+// law: 0 rough (c = r, beta), 1 walton (c = r, mu, rtmax), 2 jz (c = qn, qt, kappa_s, kappa_d).
+// body = {vx,vy,vz, wx,wy,wz, m, a, q}; m2 = inf makes body 2 a wall.
+// out = {v1[3], w1[3], v2[3], w2[3], dE, gn, gt, cos_gamma, rt, sliding, energy_created} (19 values)
+int granfric_collide(int law, const double *c, const double *body1, const double *body2,
+                     const double *n, double *out)
+{
+  LawParams p;
+  if (law == 0)
+    p = LawParams::rough(c[0], c[1]);
+  else if (law == 1)
+    p = LawParams::walton(c[0], c[1], c[2]);
+  else if (law == 2)
+    p = LawParams::jz(c[0], c[1], c[2], c[3]);
+  else
+    return -1;
+  if (p.check()) return -2;
+  auto body = [](const double *b) {
+    Body o;
+    o.v = Vec3::from(b);
+    o.w = Vec3::from(b + 3);
+    o.m = b[6];
+    o.a = b[7];
+    o.q = b[8];
+    return o;
+  };
+  Body b1 = body(body1), b2 = body(body2);
+  if (b2.is_wall()) b2 = Body::wall(b2.v);
+  const Collision r = collide(p, b1, b2, Vec3::from(n));
+  r.v1.to(out);
+  r.w1.to(out + 3);
+  r.v2.to(out + 6);
+  r.w2.to(out + 9);
+  out[12] = r.dE;
+  out[13] = r.gn;
+  out[14] = r.gt;
+  out[15] = r.cos_gamma;
+  out[16] = r.rt;
+  out[17] = r.sliding ? 1.0 : 0.0;
+  out[18] = r.energy_created ? 1.0 : 0.0;
+  return 0;
+}
+}

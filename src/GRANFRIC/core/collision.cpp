@@ -1,0 +1,108 @@
+// GRANFRIC physics core: the collision map (Walton form, see collision.h and physics-notes.md).
+#include "collision.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace granfric {
+
+const char *LawParams::check() const
+{
+  if (!(r >= 0.0 && r <= 1.0)) return "normal restitution r must be in [0, 1]";
+  if (!(rt_max >= -1.0 && rt_max <= 1.0)) return "tangential restitution must be in [-1, 1]";
+  if (!(mu_s >= 0.0)) return "friction coefficient must be >= 0";
+  if (!(mu_d >= 0.0)) return "friction coefficient must be >= 0";
+  return nullptr;
+}
+
+double Collision::gamma() const
+{
+  return std::acos(std::max(-1.0, std::min(1.0, cos_gamma)));
+}
+
+// 1/m and a^2/I of a body; both 0 for a wall
+static inline void inverse_inertia(const Body &b, double &inv_m, double &a2_over_I)
+{
+  if (b.is_wall()) {
+    inv_m = 0.0;
+    a2_over_I = 0.0;
+  } else {
+    inv_m = 1.0 / b.m;
+    a2_over_I = 1.0 / (b.q * b.m);
+  }
+}
+
+void effective_masses(const Body &b1, const Body &b2, double &m_n, double &m_t)
+{
+  double im1, k1, im2, k2;
+  inverse_inertia(b1, im1, k1);
+  inverse_inertia(b2, im2, k2);
+  m_n = 1.0 / (im1 + im2);
+  m_t = 1.0 / (im1 + im2 + k1 + k2);
+}
+
+double kinetic_energy(const Body &b)
+{
+  if (b.is_wall()) return 0.0;
+  return 0.5 * b.m * norm2(b.v) + 0.5 * b.q * b.m * b.a * b.a * norm2(b.w);
+}
+
+Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n)
+{
+  double im1, k1, im2, k2;
+  inverse_inertia(b1, im1, k1);
+  inverse_inertia(b2, im2, k2);
+  const double m_n = 1.0 / (im1 + im2);
+  const double m_t = 1.0 / (im1 + im2 + k1 + k2);
+
+  // contact-point relative velocity; a wall's contact point moves with the wall
+  Vec3 aw = b1.a * b1.w;
+  if (!b2.is_wall()) aw += b2.a * b2.w;
+  const Vec3 g = b1.v - b2.v - cross(aw, n);
+  const double gn = dot(g, n);
+  const Vec3 g_t = g - gn * n;
+  const double gt2 = norm2(g_t);
+  const double gt = std::sqrt(gt2);
+
+  Collision c;
+  c.gn = gn;
+  c.gt = gt;
+  const double g2 = gn * gn + gt2;
+  c.cos_gamma = g2 > 0.0 ? gn / std::sqrt(g2) : -1.0;
+
+  // tangential restitution: Coulomb limit rt_C = -1 + mu (m_n/m_t)(1+r)|g_n|/|g_t|
+  double rt = law.rt_max;
+  if (gt > 0.0 && law.mu_s != INF) {
+    const double slide_scale = (m_n / m_t) * (1.0 + law.r) * std::fabs(gn) / gt;
+    if (law.kind == LawKind::JZ) {
+      // Jenkins-Zhang: stick iff the sticking impulse is below kappa_s times the normal one,
+      // otherwise slide with |dP_t| = kappa_d |dP_n| (discontinuous when kappa_s != kappa_d)
+      if (!(1.0 + law.rt_max < law.mu_s * slide_scale)) {
+        rt = -1.0 + law.mu_d * slide_scale;
+        c.sliding = true;
+      }
+    } else {
+      const double rt_c = -1.0 + law.mu_s * slide_scale;
+      if (rt_c < law.rt_max) {
+        rt = rt_c;
+        c.sliding = true;
+      }
+    }
+  }
+  c.rt = rt;
+
+  const Vec3 dP_t = -(m_t * (1.0 + rt)) * g_t;
+  const Vec3 dP = (-m_n * (1.0 + law.r) * gn) * n + dP_t;
+  c.dP = dP;
+  c.v1 = b1.v + im1 * dP;
+  c.v2 = b2.v - im2 * dP;
+  const Vec3 nxdP = cross(n, dP_t);    // = n x dP; exactly 0 without tangential impulse
+  // w' = w - a n x dP / I with a/I = (a^2/I)/a
+  c.w1 = b1.is_wall() ? Vec3() : b1.w - (k1 / b1.a) * nxdP;
+  c.w2 = b2.is_wall() ? Vec3() : b2.w - (k2 / b2.a) * nxdP;
+  c.dE = -0.5 * m_n * (1.0 - law.r * law.r) * gn * gn - 0.5 * m_t * (1.0 - rt * rt) * gt2;
+  c.energy_created = c.dE > 0.0;
+  return c;
+}
+
+}    // namespace granfric

@@ -1,0 +1,85 @@
+// GRANFRIC physics core: instantaneous collision laws for rough hard spheres and discs.
+//
+// Conventions (shared/design/physics-notes.md): n points from body 2 to body 1, the contact-point
+// velocity is g = v1 - v2 - (a1 w1 + a2 w2) x n, the pair approaches iff g.n < 0. The shape factor
+// q = I/(m a^2) is per body (2/5 sphere, 1/2 disc). 2D is the same code with z components zero
+// (spins along z only stay along z). A wall is a body of infinite mass and radius with its own
+// velocity (Body::wall).
+#ifndef GRANFRIC_CORE_COLLISION_H
+#define GRANFRIC_CORE_COLLISION_H
+
+#include "vec3.h"
+
+#include <limits>
+
+namespace granfric {
+
+constexpr double INF = std::numeric_limits<double>::infinity();
+
+enum class LawKind { ROUGH, WALTON, JZ };
+
+// Coefficients of one collision law (one type pair, or particle-wall).
+// All three laws share one map (Walton's with a static and a dynamic friction coefficient):
+//   rough : r, rt_max = beta, mu_s = mu_d = inf (constant tangential restitution)
+//   walton: r, rt_max, mu_s = mu_d = mu
+//   jz    : r = 1 - 2 q_n, rt_max = 1 - 2 q_t, mu_s = kappa_s, mu_d = kappa_d
+struct LawParams {
+  LawKind kind = LawKind::ROUGH;
+  double r = 1.0;
+  double rt_max = -1.0;
+  double mu_s = INF;
+  double mu_d = INF;
+
+  static LawParams rough(double r, double beta) { return {LawKind::ROUGH, r, beta, INF, INF}; }
+  static LawParams walton(double r, double mu, double rt_max)
+  {
+    return {LawKind::WALTON, r, rt_max, mu, mu};
+  }
+  static LawParams jz(double qn, double qt, double kappa_s, double kappa_d)
+  {
+    return {LawKind::JZ, 1.0 - 2.0 * qn, 1.0 - 2.0 * qt, kappa_s, kappa_d};
+  }
+  // the TC model's replacement (Luding et al. 1998): elastic and smooth, r = 1 and beta = -1, so
+  // neither normal nor tangential motion loses energy and spins are untouched
+  LawParams elastic() const { return {kind, 1.0, -1.0, INF, INF}; }
+
+  // first violated range as a message, or nullptr when the values are admissible
+  const char *check() const;
+};
+
+struct Body {
+  Vec3 v, w;        // velocity, angular velocity
+  double m = 1.0;   // mass (INF: wall)
+  double a = 0.5;   // radius (ignored for a wall)
+  double q = 0.4;   // I / (m a^2) (ignored for a wall)
+
+  static Body wall(const Vec3 &v_wall) { return {v_wall, Vec3(), INF, 0.0, 1.0}; }
+  bool is_wall() const { return m == INF; }
+};
+
+struct Collision {
+  Vec3 v1, w1, v2, w2;     // post-collision state (v2 = wall velocity, w2 = 0 for a wall)
+  Vec3 dP;                 // impulse on body 1 (body 2 gets -dP)
+  double dE = 0.0;         // kinetic energy change, closed form (<= 0 unless the law creates energy)
+  double gn = 0.0;         // pre-collision g.n (< 0 when approaching)
+  double gt = 0.0;         // pre-collision |g_t|
+  double cos_gamma = -1.0; // cos of the impact angle, g.n/|g| (-1 for a head-on or a g = 0 contact)
+  double rt = 0.0;         // tangential restitution that was applied
+  bool sliding = false;    // Coulomb limit reached (never for rough)
+  bool energy_created = false;
+  double gamma() const;    // impact angle in (pi/2, pi]
+};
+
+// Apply the law to a contact with unit normal n (from 2 to 1). The caller decides whether the
+// pair approaches (gn < 0); the map is applied as given.
+Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n);
+
+// Effective masses of the contact (m_n, m_t) as used by the map.
+void effective_masses(const Body &b1, const Body &b2, double &m_n, double &m_t);
+
+// Kinetic energy of a body (translational + rotational); 0 for a wall.
+double kinetic_energy(const Body &b);
+
+}    // namespace granfric
+
+#endif

@@ -1,0 +1,427 @@
+/* ----------------------------------------------------------------------
+   GRANFRIC: hard-sphere collision laws as LAMMPS pair styles (see pair_hardsphere.h)
+------------------------------------------------------------------------- */
+
+#include "pair_hardsphere.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "memory.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using granfric::INF;
+using granfric::LawKind;
+using granfric::LawParams;
+
+enum { SPHERE, DISC, NUMBER };
+
+static constexpr int MAXRAW = 4;
+
+static const char *law_style(LawKind k)
+{
+  switch (k) {
+    case LawKind::ROUGH: return "hardsphere/rough";
+    case LawKind::WALTON: return "hardsphere/walton";
+    default: return "hardsphere/jz";
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairHardsphere::PairHardsphere(LAMMPS *lmp, LawKind k) :
+    Pair(lmp), lawkind(k), qshape(0.4), inertia_style(SPHERE), raw(nullptr), params(nullptr),
+    onerad(nullptr), maxrad(nullptr)
+{
+  nraw = (k == LawKind::ROUGH) ? 2 : (k == LawKind::WALTON) ? 3 : 4;
+  single_enable = 1;
+  single_extra = NSINGLE;
+  svector = new double[NSINGLE];
+  no_virial_fdotr_compute = 1;
+  finitecutflag = 1;
+  restartinfo = 1;
+  writedata = 1;
+}
+
+PairHardsphere::~PairHardsphere()
+{
+  delete[] svector;
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(raw);
+    memory->destroy(params);
+    delete[] onerad;
+    delete[] maxrad;
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairHardsphere::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  memory->create(raw, n + 1, n + 1, MAXRAW, "pair:raw");
+  memory->create(params, n + 1, n + 1, "pair:params");
+  for (int i = 0; i <= n; i++)
+    for (int j = 0; j <= n; j++) {
+      setflag[i][j] = 0;
+      for (int k = 0; k < MAXRAW; k++) raw[i][j][k] = 0.0;
+      params[i][j] = LawParams();
+    }
+  onerad = new double[n + 1];
+  maxrad = new double[n + 1];
+}
+
+/* ----------------------------------------------------------------------
+   no forces: hard particles interact only through fix hardsphere/ed
+------------------------------------------------------------------------- */
+
+void PairHardsphere::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+}
+
+/* ----------------------------------------------------------------------
+   pair_style hardsphere/<law> [inertia sphere|disc|<q>]
+------------------------------------------------------------------------- */
+
+void PairHardsphere::settings(int narg, char **arg)
+{
+  qshape = 0.4;
+  inertia_style = SPHERE;
+  int iarg = 0;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "inertia") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style inertia", error);
+      const std::string val = arg[iarg + 1];
+      if (val == "sphere") {
+        qshape = 0.4;
+        inertia_style = SPHERE;
+      } else if (val == "disc") {
+        qshape = 0.5;
+        inertia_style = DISC;
+      } else {
+        if (!utils::is_double(val))
+          error->all(FLERR,
+                     "Pair style {} inertia must be sphere, disc or a number 0 < q <= 1, not {}",
+                     law_style(lawkind), val);
+        qshape = utils::numeric(FLERR, val, false, lmp);
+        inertia_style = NUMBER;
+        if (!(qshape > 0.0 && qshape <= 1.0))
+          error->all(FLERR,
+                     "Pair style {} inertia q = I/(m a^2) = {} is out of range (0 < q <= 1)",
+                     law_style(lawkind), val);
+      }
+      iarg += 2;
+    } else {
+      error->all(FLERR, "Unknown pair style {} keyword: {} (allowed: inertia)",
+                 law_style(lawkind), arg[iarg]);
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+const char *PairHardsphere::coeff_names() const
+{
+  switch (lawkind) {
+    case LawKind::ROUGH: return "r beta";
+    case LawKind::WALTON: return "r mu rtmax";
+    default: return "qn qt kappa_s kappa_d";
+  }
+}
+
+// a number, or inf (any case) where infinity is allowed
+static double parse_value(const std::string &who, const char *name, const char *s, bool allow_inf,
+                          LAMMPS *lmp)
+{
+  std::string v = utils::lowercase(s);
+  if (allow_inf && (v == "inf" || v == "infinity")) return INF;
+  if (!utils::is_double(v))
+    lmp->error->all(FLERR, "{}: {} = {} is not a number{}", who, name, s,
+                    allow_inf ? " (nor inf)" : "");
+  return utils::numeric(FLERR, v, false, lmp);
+}
+
+LawParams PairHardsphere::parse_law(const std::string &who, char **arg, double *values) const
+{
+  auto in_range = [&](const char *name, double v, double lo, double hi, const char *range) {
+    if (!(v >= lo && v <= hi))
+      error->all(FLERR, "{}: {} = {} is out of range ({})", who, name, v, range);
+  };
+  LawParams p;
+  if (lawkind == LawKind::ROUGH) {
+    values[0] = parse_value(who, "r", arg[0], false, lmp);
+    values[1] = parse_value(who, "beta", arg[1], false, lmp);
+    in_range("r", values[0], 0.0, 1.0, "0 <= r <= 1");
+    in_range("beta", values[1], -1.0, 1.0, "-1 <= beta <= 1");
+    p = LawParams::rough(values[0], values[1]);
+  } else if (lawkind == LawKind::WALTON) {
+    values[0] = parse_value(who, "r", arg[0], false, lmp);
+    values[1] = parse_value(who, "mu", arg[1], true, lmp);
+    values[2] = parse_value(who, "rtmax", arg[2], false, lmp);
+    in_range("r", values[0], 0.0, 1.0, "0 <= r <= 1");
+    in_range("mu", values[1], 0.0, INF, "mu >= 0, or inf");
+    in_range("rtmax", values[2], -1.0, 1.0, "-1 <= rtmax <= 1");
+    p = LawParams::walton(values[0], values[1], values[2]);
+  } else {
+    values[0] = parse_value(who, "qn", arg[0], false, lmp);
+    values[1] = parse_value(who, "qt", arg[1], false, lmp);
+    values[2] = parse_value(who, "kappa_s", arg[2], true, lmp);
+    values[3] = parse_value(who, "kappa_d", arg[3], true, lmp);
+    in_range("qn", values[0], 0.0, 0.5, "0 <= qn <= 0.5");
+    in_range("qt", values[1], 0.0, 1.0, "0 <= qt <= 1");
+    in_range("kappa_s", values[2], 0.0, INF, "kappa_s >= 0, or inf");
+    in_range("kappa_d", values[3], 0.0, INF, "kappa_d >= 0, or inf");
+    if (values[3] > values[2] && comm->me == 0)
+      error->warning(FLERR,
+                     "{}: kappa_d = {} > kappa_s = {}: the Jenkins-Zhang map is then "
+                     "discontinuous and can create energy (counted by fix hardsphere/ed)",
+                     who, values[3], values[2]);
+    p = LawParams::jz(values[0], values[1], values[2], values[3]);
+  }
+  return p;
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J <law coefficients>
+------------------------------------------------------------------------- */
+
+void PairHardsphere::coeff(int narg, char **arg)
+{
+  if (narg != 2 + nraw)
+    error->all(FLERR, "Incorrect args for pair coefficients: pair_coeff I J {} for {} ({} given)",
+               coeff_names(), law_style(lawkind), narg);
+  if (!allocated) allocate();
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+
+  double values[MAXRAW] = {0.0, 0.0, 0.0, 0.0};
+  parse_law(std::string("Pair_coeff ") + law_style(lawkind), arg + 2, values);
+
+  int count = 0;
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) {
+      for (int k = 0; k < MAXRAW; k++) raw[i][j][k] = values[k];
+      set_law(i, j);
+      setflag[i][j] = 1;
+      count++;
+    }
+  if (count == 0) error->all(FLERR, "Incorrect args for pair coefficients: no type pair matched");
+}
+
+// params[i][j] from raw[i][j] (values already validated)
+void PairHardsphere::set_law(int i, int j)
+{
+  const double *v = raw[i][j];
+  if (lawkind == LawKind::ROUGH)
+    params[i][j] = LawParams::rough(v[0], v[1]);
+  else if (lawkind == LawKind::WALTON)
+    params[i][j] = LawParams::walton(v[0], v[1], v[2]);
+  else
+    params[i][j] = LawParams::jz(v[0], v[1], v[2], v[3]);
+  params[j][i] = params[i][j];
+}
+
+// unset I,J coefficients: arithmetic mean of I,I and J,J (inf if either is inf)
+void PairHardsphere::mix(int i, int j)
+{
+  for (int k = 0; k < nraw; k++) {
+    const double a = raw[i][i][k], b = raw[j][j][k];
+    raw[i][j][k] = (a == INF || b == INF) ? INF : 0.5 * (a + b);
+  }
+  set_law(i, j);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairHardsphere::init_style()
+{
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
+    error->all(FLERR,
+               "Pair style {} requires per-atom radius, mass and angular velocity "
+               "(atom_style sphere)",
+               law_style(lawkind));
+  if (comm->ghost_velocity == 0)
+    error->all(FLERR, "Pair style {} requires ghost atoms to store velocity: use comm_modify vel yes",
+               law_style(lawkind));
+  if (inertia_style == DISC && domain->dimension != 2)
+    error->all(FLERR, "Pair style {} inertia disc requires a 2d simulation (dimension 2)",
+               law_style(lawkind));
+
+  neighbor->add_request(this, NeighConst::REQ_SIZE);
+
+  // largest radius per type, for the cutoffs
+  const int ntypes = atom->ntypes;
+  for (int i = 1; i <= ntypes; i++) onerad[i] = 0.0;
+  const double *radius = atom->radius;
+  const int *type = atom->type;
+  for (int i = 0; i < atom->nlocal; i++) onerad[type[i]] = MAX(onerad[type[i]], radius[i]);
+  MPI_Allreduce(&onerad[1], &maxrad[1], ntypes, MPI_DOUBLE, MPI_MAX, world);
+}
+
+/* ----------------------------------------------------------------------
+   cutoff = largest contact distance a_i + a_j of the two types; types without
+   atoms get the largest contact distance of the system (so bins stay sane)
+------------------------------------------------------------------------- */
+
+double PairHardsphere::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) mix(i, j);
+  double cut = maxrad[i] + maxrad[j];
+  if (maxrad[i] <= 0.0 || maxrad[j] <= 0.0) {
+    cut = 0.0;
+    for (int k = 1; k <= atom->ntypes; k++) cut = MAX(cut, 2.0 * maxrad[k]);
+  }
+  return cut;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairHardsphere::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fwrite(&setflag[i][j], sizeof(int), 1, fp);
+      if (setflag[i][j]) fwrite(raw[i][j], sizeof(double), MAXRAW, fp);
+    }
+}
+
+void PairHardsphere::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int me = comm->me;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+      MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+      if (setflag[i][j]) {
+        if (me == 0) utils::sfread(FLERR, raw[i][j], sizeof(double), MAXRAW, fp, nullptr, error);
+        MPI_Bcast(raw[i][j], MAXRAW, MPI_DOUBLE, 0, world);
+        set_law(i, j);
+      }
+    }
+}
+
+void PairHardsphere::write_restart_settings(FILE *fp)
+{
+  int kind = static_cast<int>(lawkind);
+  fwrite(&kind, sizeof(int), 1, fp);
+  fwrite(&inertia_style, sizeof(int), 1, fp);
+  fwrite(&qshape, sizeof(double), 1, fp);
+}
+
+void PairHardsphere::read_restart_settings(FILE *fp)
+{
+  int kind = 0;
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &kind, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &inertia_style, sizeof(int), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &qshape, sizeof(double), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&kind, 1, MPI_INT, 0, world);
+  MPI_Bcast(&inertia_style, 1, MPI_INT, 0, world);
+  MPI_Bcast(&qshape, 1, MPI_DOUBLE, 0, world);
+  if (kind != static_cast<int>(lawkind))
+    error->all(FLERR, "Restart file holds a different hardsphere collision law than {}",
+               law_style(lawkind));
+}
+
+/* ----------------------------------------------------------------------
+   data file: full precision, so write_data + read_data reproduce the law exactly
+------------------------------------------------------------------------- */
+
+void PairHardsphere::write_data(FILE *fp)
+{
+  for (int i = 1; i <= atom->ntypes; i++) {
+    fprintf(fp, "%d", i);
+    for (int k = 0; k < nraw; k++) fprintf(fp, " %.17g", raw[i][i][k]);
+    fprintf(fp, "\n");
+  }
+}
+
+void PairHardsphere::write_data_all(FILE *fp)
+{
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      fprintf(fp, "%d %d", i, j);
+      for (int k = 0; k < nraw; k++) fprintf(fp, " %.17g", raw[i][j][k]);
+      fprintf(fp, "\n");
+    }
+}
+
+/* ----------------------------------------------------------------------
+   what a collision of i and j would do if it happened now (compute pair/local p1..p8):
+   p1 = g.n (normal contact velocity, < 0 approaching), p2 = |g_t|, p3 = energy change of the
+   collision (0 when separating), p4 = tangential restitution applied, p5 = 1 if sliding,
+   p6 = impact angle gamma (rad), p7 = |normal impulse|, p8 = |tangential impulse|.
+   No force: fforce = 0, energy 0.
+------------------------------------------------------------------------- */
+
+double PairHardsphere::single(int i, int j, int itype, int jtype, double rsq, double, double,
+                              double &fforce)
+{
+  using granfric::Vec3;
+  fforce = 0.0;
+  const double r = sqrt(rsq);
+  for (int k = 0; k < NSINGLE; k++) svector[k] = 0.0;
+  if (r == 0.0) return 0.0;
+
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  const Vec3 n = (1.0 / r) * (Vec3::from(x[i]) - Vec3::from(x[j]));
+  granfric::Body b1, b2;
+  b1.v = Vec3::from(v[i]);
+  b1.w = Vec3::from(omega[i]);
+  b1.m = atom->rmass[i];
+  b1.a = atom->radius[i];
+  b1.q = qshape;
+  b2.v = Vec3::from(v[j]);
+  b2.w = Vec3::from(omega[j]);
+  b2.m = atom->rmass[j];
+  b2.a = atom->radius[j];
+  b2.q = qshape;
+
+  const granfric::Collision c = granfric::collide(params[itype][jtype], b1, b2, n);
+  svector[0] = c.gn;
+  svector[1] = c.gt;
+  if (c.gn < 0.0) {
+    const double dPn = fabs(granfric::dot(c.dP, n));
+    svector[2] = c.dE;
+    svector[3] = c.rt;
+    svector[4] = c.sliding ? 1.0 : 0.0;
+    svector[5] = c.gamma();
+    svector[6] = dPn;
+    svector[7] = granfric::norm(c.dP - granfric::dot(c.dP, n) * n);
+  }
+  return 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void *PairHardsphere::extract(const char *str, int &dim)
+{
+  dim = 0;
+  if (strcmp(str, "inertia") == 0) return (void *) &qshape;
+  return nullptr;
+}
+
+double PairHardsphere::memory_usage()
+{
+  const double n = atom->ntypes + 1;
+  return n * n * (sizeof(int) + sizeof(double) + MAXRAW * sizeof(double) + sizeof(LawParams)) +
+      2.0 * n * sizeof(double);
+}

@@ -1,0 +1,75 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   GRANFRIC: hard-sphere collision laws as LAMMPS pair styles.
+
+   pair_style hardsphere/rough  [inertia sphere|disc|<q>]   pair_coeff I J r beta
+   pair_style hardsphere/walton [inertia sphere|disc|<q>]   pair_coeff I J r mu rtmax
+   pair_style hardsphere/jz     [inertia sphere|disc|<q>]   pair_coeff I J qn qt kappa_s kappa_d
+
+   The pair styles compute no forces: they own the collision law of each type pair (used by
+   fix hardsphere/ed and the other GRANFRIC styles), the contact distance a_i + a_j, the
+   neighbor request, mixing, write_data and restart. single() reports what a collision of the
+   pair would do now (for compute pair/local).
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANFRIC_PAIR_HARDSPHERE_H
+#define LMP_GRANFRIC_PAIR_HARDSPHERE_H
+
+#include "pair.h"
+
+#include "core/collision.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+class PairHardsphere : public Pair {
+ public:
+  // number of single() extra values, see single()
+  static constexpr int NSINGLE = 8;
+
+  PairHardsphere(class LAMMPS *, granfric::LawKind);
+  ~PairHardsphere() override;
+
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  void write_data(FILE *) override;
+  void write_data_all(FILE *) override;
+  double single(int, int, int, int, double, double, double, double &) override;
+  void *extract(const char *, int &) override;
+  double memory_usage() override;
+
+  // interface for the GRANFRIC fixes and computes
+  const granfric::LawParams &law(int itype, int jtype) const { return params[itype][jtype]; }
+  double shape_factor() const { return qshape; }
+  granfric::LawKind kind() const { return lawkind; }
+  // law parameters for particle-wall contacts of type itype when a wall names none: I,I's
+  const granfric::LawParams &wall_law(int itype) const { return params[itype][itype]; }
+  // parse the law's coefficients from arg[0..ncoeff-1]; 'who' names the command in errors
+  granfric::LawParams parse_law(const std::string &who, char **arg, double *raw) const;
+  int ncoeff() const { return nraw; }
+  const char *coeff_names() const;
+
+ protected:
+  granfric::LawKind lawkind;
+  int nraw;                       // number of pair_coeff values of this law
+  double qshape;                  // shape factor I/(m a^2)
+  int inertia_style;              // SPHERE, DISC or NUMBER, for messages and restart
+  double ***raw;                  // raw pair_coeff values per type pair, for write_data/restart
+  granfric::LawParams **params;   // law per type pair
+  double *onerad, *maxrad;        // largest radius per type, locally and globally
+
+  void allocate();
+  void set_law(int i, int j);
+  void mix(int i, int j);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
