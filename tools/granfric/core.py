@@ -1,0 +1,77 @@
+"""ctypes access to the GRANFRIC C++ physics core (libgranfric_capi.so): the very collision law
+the LAMMPS styles use, so Monte Carlo averages and tables come from one code path."""
+import ctypes
+import math
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+_LAWS = {"rough": 0, "walton": 1, "jz": 2}
+_lib = None
+
+
+def build_dir():
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    return os.environ.get("GRANFRIC_BUILD", os.path.join(root, "build"))
+
+
+def lib():
+    """Load libgranfric_capi.so from $GRANFRIC_BUILD (default <repo>/build)."""
+    global _lib
+    if _lib is None:
+        path = os.path.join(build_dir(), "libgranfric_capi.so")
+        if not os.path.exists(path):
+            raise FileNotFoundError(f"{path} not found: build GRANFRIC first (bash tools/test.sh "
+                                    "or cmake --build build), or set GRANFRIC_BUILD")
+        _lib = ctypes.CDLL(path)
+        d = ctypes.POINTER(ctypes.c_double)
+        _lib.granfric_collide.argtypes = [ctypes.c_int, d, d, d, d, d]
+        _lib.granfric_collide.restype = ctypes.c_int
+    return _lib
+
+
+@dataclass
+class Body:
+    v: tuple = (0.0, 0.0, 0.0)
+    w: tuple = (0.0, 0.0, 0.0)
+    m: float = 1.0
+    a: float = 0.5
+    q: float = 0.4
+
+    def array(self):
+        return np.array([*self.v, *self.w, self.m, self.a, self.q], dtype=float)
+
+    @staticmethod
+    def wall(v=(0.0, 0.0, 0.0)):
+        return Body(v=v, m=math.inf, a=0.0, q=1.0)
+
+
+@dataclass
+class Collision:
+    v1: np.ndarray
+    w1: np.ndarray
+    v2: np.ndarray
+    w2: np.ndarray
+    dE: float
+    gn: float
+    gt: float
+    cos_gamma: float
+    rt: float
+    sliding: bool
+    energy_created: bool
+
+
+def collide(law, coeffs, b1, b2, n):
+    """Apply law ('rough' r beta | 'walton' r mu rtmax | 'jz' qn qt kappa_s kappa_d) to bodies
+    b1, b2 touching along unit normal n (from 2 to 1). Returns a Collision."""
+    c = np.array(coeffs, dtype=float)
+    a1, a2, nn = b1.array(), b2.array(), np.array(n, dtype=float)
+    out = np.zeros(19)
+    p = ctypes.POINTER(ctypes.c_double)
+    rc = lib().granfric_collide(_LAWS[law], c.ctypes.data_as(p), a1.ctypes.data_as(p),
+                                a2.ctypes.data_as(p), nn.ctypes.data_as(p), out.ctypes.data_as(p))
+    if rc != 0:
+        raise ValueError(f"invalid {law} coefficients {coeffs}")
+    return Collision(out[0:3], out[3:6], out[6:9], out[9:12], out[12], out[13], out[14],
+                     out[15], out[16], bool(out[17]), bool(out[18]))
