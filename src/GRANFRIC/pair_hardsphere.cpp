@@ -8,6 +8,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "memory.h"
 #include "neigh_list.h"
 #include "neighbor.h"
@@ -183,6 +184,9 @@ LawParams PairHardsphere::parse_law(const std::string &who, char **arg, double *
     in_range("qt", values[1], 0.0, 1.0, "0 <= qt <= 1");
     in_range("kappa_s", values[2], 0.0, INF, "kappa_s >= 0, or inf");
     in_range("kappa_d", values[3], 0.0, INF, "kappa_d >= 0, or inf");
+    if (values[3] == INF && values[2] != INF)
+      error->all(FLERR, "{}: kappa_d = inf needs kappa_s = inf (an infinite sliding impulse is "
+                 "undefined); kappa_s = {}", who, values[2]);
     if (values[3] > values[2] && comm->me == 0)
       error->warning(FLERR,
                      "{}: kappa_d = {} > kappa_s = {}: the Jenkins-Zhang map is then "
@@ -243,6 +247,7 @@ void PairHardsphere::mix(int i, int j)
     raw[i][j][k] = (a == INF || b == INF) ? INF : 0.5 * (a + b);
   }
   set_law(i, j);
+  did_mix = true;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -367,7 +372,7 @@ void PairHardsphere::write_data_all(FILE *fp)
 /* ----------------------------------------------------------------------
    what a collision of i and j would do if it happened now (compute pair/local p1..p8):
    p1 = g.n (normal contact velocity, < 0 approaching), p2 = |g_t|, p3 = energy change of the
-   collision (0 when separating), p4 = tangential restitution applied, p5 = 1 if sliding,
+   collision in energy units (0 when separating), p4 = tangential restitution applied, p5 = 1 if sliding,
    p6 = impact angle gamma (rad), p7 = |normal impulse|, p8 = |tangential impulse|.
    No force: fforce = 0, energy 0.
 ------------------------------------------------------------------------- */
@@ -400,7 +405,7 @@ double PairHardsphere::single(int i, int j, int itype, int jtype, double rsq, do
   svector[1] = c.gt;
   if (c.gn < 0.0) {
     const double dPn = fabs(granfric::dot(c.dP, n));
-    svector[2] = c.dE;
+    svector[2] = c.dE * force->mvv2e;
     svector[3] = c.rt;
     svector[4] = c.sliding ? 1.0 : 0.0;
     svector[5] = c.gamma();

@@ -67,6 +67,9 @@ TEST_F(PairErrors, JenkinsZhangRanges)
   EXPECT_LMP_ERROR(lmp.get(), "pair_coeff * * 0.1 -0.1 0.3 0.3", "qt = -0.1 is out of range");
   EXPECT_LMP_ERROR(lmp.get(), "pair_coeff * * 0.1 0.1 -0.3 0.3", "kappa_s = -0.3 is out of range");
   EXPECT_LMP_ERROR(lmp.get(), "pair_coeff * * 0.1 0.1 0.3 -0.3", "kappa_d = -0.3 is out of range");
+  EXPECT_LMP_ERROR(lmp.get(), "pair_coeff * * 0.1 0.1 0.3 inf",
+                   "kappa_d = inf needs kappa_s = inf");
+  EXPECT_EQ(error_of(lmp.get(), "pair_coeff * * 0.1 0.1 inf inf"), "");
   EXPECT_LMP_ERROR(lmp.get(), "pair_coeff * * 0.1 0.1 0.3",
                    "pair_coeff I J qn qt kappa_s kappa_d");
 }

@@ -12,6 +12,8 @@ struct Vec3 {
   constexpr Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
   static Vec3 from(const double *p) { return {p[0], p[1], p[2]}; }
   void to(double *p) const { p[0] = x; p[1] = y; p[2] = z; }
+  double operator[](int d) const { return d == 0 ? x : (d == 1 ? y : z); }
+  double &operator[](int d) { return d == 0 ? x : (d == 1 ? y : z); }
 
   Vec3 &operator+=(const Vec3 &o) { x += o.x; y += o.y; z += o.z; return *this; }
   Vec3 &operator-=(const Vec3 &o) { x -= o.x; y -= o.y; z -= o.z; return *this; }

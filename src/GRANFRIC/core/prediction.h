@@ -1,0 +1,68 @@
+// GRANFRIC physics core: event prediction under free flight with uniform gravity.
+// Uniform gravity cancels in the relative motion of two particles, so pair contact times solve
+// |r + v tau| = sigma; a particle against a fixed plane (or cell boundary) moves on a parabola.
+#ifndef GRANFRIC_CORE_PREDICTION_H
+#define GRANFRIC_CORE_PREDICTION_H
+
+#include "vec3.h"
+
+#include <limits>
+
+namespace granfric {
+
+constexpr double NEVER = std::numeric_limits<double>::infinity();
+
+// Earliest tau >= 0 at which |r + v tau| = sigma with the pair approaching (r.v < 0); NEVER if
+// none. A pair that already overlaps and approaches gets tau = 0.
+inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
+{
+  const double b = dot(r, v);
+  if (b >= 0.0) return NEVER;
+  const double v2 = norm2(v);
+  const double c = norm2(r) - sigma * sigma;
+  const double disc = b * b - v2 * c;
+  if (disc < 0.0) return NEVER;
+  const double tau = c / (-b + std::sqrt(disc));    // stable form of (-b - sqrt(disc))/v2
+  return tau > 0.0 ? tau : 0.0;
+}
+
+// First tau >= 0 at which x + v tau + g tau^2 / 2 reaches B moving upward (dir = +1: velocity
+// > 0 there) or downward (dir = -1); NEVER if it does not. Roots are taken in stable forms and
+// selected by the sign of the velocity at the root, so a point that sits on B up to round-off
+// is not reported as crossing B again in the direction it just came from.
+inline double crossing_time(double x, double v, double g, double B, int dir)
+{
+  const double a = 0.5 * g, c = x - B;
+  if (a == 0.0) {
+    if (dir * v <= 0.0) return NEVER;
+    const double tau = -c / v;
+    return tau > 0.0 ? tau : 0.0;
+  }
+  const double disc = v * v - 4.0 * a * c;
+  if (disc < 0.0) return NEVER;
+  const double s = std::sqrt(disc);
+  double tau;
+  if (dir > 0) {
+    // root with derivative 2 a tau + v = +s
+    if (v >= 0.0)
+      tau = -2.0 * c / (v + s);
+    else
+      tau = (s - v) / (2.0 * a);
+  } else {
+    // root with derivative -s
+    if (v <= 0.0)
+      tau = 2.0 * c / (s - v);
+    else
+      tau = -(v + s) / (2.0 * a);
+  }
+  if (!(tau >= 0.0)) {
+    // the crossing in this direction lies in the past; if round-off left the point beyond B
+    // while it still moves that way, it crosses now
+    return (c * dir > 0.0 && v * dir > 0.0) ? 0.0 : NEVER;
+  }
+  return tau;
+}
+
+}    // namespace granfric
+
+#endif

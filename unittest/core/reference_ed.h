@@ -1,0 +1,135 @@
+// Test-only brute-force O(N^2) event-driven reference: at every step it scans all pairs and
+// their periodic images for the globally earliest collision. It shares only the collision law
+// and the pair contact-time formula with the core; its bookkeeping (no cells, no queue, no
+// invalidation) is independent. Each particle keeps its own time stamp so that positions do not
+// accumulate round-off from drifting everybody at every event.
+#ifndef GRANFRIC_TEST_REFERENCE_ED_H
+#define GRANFRIC_TEST_REFERENCE_ED_H
+
+#include "core/collision.h"
+#include "core/prediction.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace granfric_test {
+
+using namespace granfric;
+
+struct RefParticle {
+  Vec3 x, v, w;    // at time t
+  double t = 0.0;
+  double a = 0.5, m = 1.0, q = 0.4;
+  int type = 1;
+  double t_last = -INF;
+  int last_partner = -1;
+  int last_off[3] = {0, 0, 0};
+};
+
+struct Reference {
+  int dim = 3;
+  Vec3 lo, L;
+  Vec3 gravity;
+  double tc = 0.0;
+  int ntypes = 1;
+  std::vector<LawParams> laws;    // (ntypes+1)^2
+  std::vector<RefParticle> p;
+  double time = 0.0;
+  long collisions = 0;
+  double dE = 0.0;
+
+  Vec3 pos(const RefParticle &q, double t) const
+  {
+    const double dt = t - q.t;
+    return q.x + dt * q.v + (0.5 * dt * dt) * gravity;
+  }
+  Vec3 vel(const RefParticle &q, double t) const { return q.v + (t - q.t) * gravity; }
+  void bring(RefParticle &q, double t) const
+  {
+    q.x = pos(q, t);
+    q.v = vel(q, t);
+    q.t = t;
+  }
+
+  // minimum-image separation per periodic dimension
+  Vec3 min_image(Vec3 r) const
+  {
+    for (int d = 0; d < dim; d++) r[d] -= L[d] * std::round(r[d] / L[d]);
+    return r;
+  }
+
+  void run_until(double t_end, long max_collisions = 100000000)
+  {
+    const int n = (int) p.size();
+    double amax = 0;
+    for (auto &q : p) amax = std::max(amax, q.a);
+    while (time < t_end) {
+      double vmax = 0;
+      for (auto &q : p) vmax = std::max(vmax, norm(vel(q, time)));
+      // within H no pair moves by more than 1.5 L - 2 amax relative to its minimum image,
+      // so image offsets of -1, 0, +1 around it contain every possible contact
+      double H = INF;
+      for (int d = 0; d < dim; d++)
+        H = std::min(H, (1.5 * L[d] - 2.0 * amax) / (2.0 * vmax + 1e-300));
+      double best = std::min(H, t_end - time);
+      int bi = -1, bj = -1, boff[3] = {0, 0, 0};
+      for (int i = 0; i < n; i++) {
+        const Vec3 xi = pos(p[i], time), vi = vel(p[i], time);
+        for (int j = i + 1; j < n; j++) {
+          const Vec3 r = xi - pos(p[j], time), v = vi - vel(p[j], time);
+          int k0[3] = {0, 0, 0};
+          for (int d = 0; d < dim; d++) k0[d] = (int) std::lround(r[d] / L[d]);
+          const int kz = dim == 3 ? 1 : 0;
+          for (int kx = -1; kx <= 1; kx++)
+            for (int ky = -1; ky <= 1; ky++)
+              for (int k3 = -kz; k3 <= kz; k3++) {
+                const int off[3] = {k0[0] + kx, k0[1] + ky, k0[2] + k3};
+                if (p[i].last_partner == j && p[j].last_partner == i &&
+                    off[0] == p[i].last_off[0] && off[1] == p[i].last_off[1] &&
+                    off[2] == p[i].last_off[2])
+                  continue;
+                const Vec3 s(off[0] * L.x, off[1] * L.y, off[2] * L.z);
+                const double tau = pair_contact_time(r - s, v, p[i].a + p[j].a);
+                if (tau < best) {
+                  best = tau;
+                  bi = i;
+                  bj = j;
+                  for (int d = 0; d < 3; d++) boff[d] = off[d];
+                }
+              }
+        }
+      }
+      time += best;
+      if (bi < 0) continue;
+      RefParticle &a = p[bi], &b = p[bj];
+      bring(a, time);
+      bring(b, time);
+      const Vec3 r = a.x - b.x - Vec3(boff[0] * L.x, boff[1] * L.y, boff[2] * L.z);
+      const Vec3 nn = (1.0 / norm(r)) * r;
+      LawParams law = laws[a.type * (ntypes + 1) + b.type];
+      if (tc > 0 && (time - a.t_last < tc || time - b.t_last < tc)) law = law.elastic();
+      const Collision c =
+          collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body{b.v, b.w, b.m, b.a, b.q}, nn);
+      a.v = c.v1;
+      a.w = c.w1;
+      b.v = c.v2;
+      b.w = c.w2;
+      a.t_last = b.t_last = time;
+      a.last_partner = bj;
+      b.last_partner = bi;
+      for (int d = 0; d < 3; d++) {
+        a.last_off[d] = boff[d];
+        b.last_off[d] = -boff[d];
+      }
+      dE += c.dE;
+      if (++collisions > max_collisions) throw std::runtime_error("reference: too many collisions");
+    }
+    for (auto &q : p) bring(q, t_end);
+  }
+};
+
+}    // namespace granfric_test
+
+#endif
