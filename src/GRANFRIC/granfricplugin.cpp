@@ -5,6 +5,9 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "compute_hardsphere_collisions.h"
+#include "compute_hardsphere_temp.h"
+#include "fix_hardsphere_ed.h"
 #include "pair_hardsphere.h"
 
 using namespace LAMMPS_NS;
@@ -16,16 +19,24 @@ template <granfric::LawKind K> Pair *pair_creator(LAMMPS *lmp)
   return new PairHardsphere(lmp, K);
 }
 
-void register_pair(lammpsplugin_regfunc reg, void *lmp, void *handle, const char *name,
-                   const char *info, lammpsplugin_factory1 *creator)
+template <class S> S *style_creator(LAMMPS *lmp, int argc, char **argv)
+{
+  return new S(lmp, argc, argv);
+}
+
+void add(lammpsplugin_regfunc reg, void *lmp, void *handle, const char *style, const char *name,
+         const char *info, void *creator, bool v1)
 {
   lammpsplugin_t plugin;
   plugin.version = LAMMPS_VERSION;
-  plugin.style = "pair";
+  plugin.style = style;
   plugin.name = name;
   plugin.info = info;
   plugin.author = "GRANFRIC developers";
-  plugin.creator.v1 = creator;
+  if (v1)
+    plugin.creator.v1 = (lammpsplugin_factory1 *) creator;
+  else
+    plugin.creator.v2 = (lammpsplugin_factory2 *) creator;
   plugin.handle = handle;
   (*reg)(&plugin, lmp);
 }
@@ -35,13 +46,22 @@ void register_pair(lammpsplugin_regfunc reg, void *lmp, void *handle, const char
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
   auto reg = (lammpsplugin_regfunc) regfunc;
-  register_pair(reg, lmp, handle, "hardsphere/rough",
-                "GRANFRIC rough hard spheres: constant restitution r and beta",
-                (lammpsplugin_factory1 *) &pair_creator<granfric::LawKind::ROUGH>);
-  register_pair(reg, lmp, handle, "hardsphere/walton",
-                "GRANFRIC hard spheres with Coulomb friction (Walton: r, mu, rtmax)",
-                (lammpsplugin_factory1 *) &pair_creator<granfric::LawKind::WALTON>);
-  register_pair(reg, lmp, handle, "hardsphere/jz",
-                "GRANFRIC hard discs/spheres, Jenkins-Zhang rule (qn, qt, kappa_s, kappa_d)",
-                (lammpsplugin_factory1 *) &pair_creator<granfric::LawKind::JZ>);
+  add(reg, lmp, handle, "pair", "hardsphere/rough",
+      "GRANFRIC rough hard spheres: constant restitution r and beta",
+      (void *) &pair_creator<granfric::LawKind::ROUGH>, true);
+  add(reg, lmp, handle, "pair", "hardsphere/walton",
+      "GRANFRIC hard spheres with Coulomb friction (Walton: r, mu, rtmax)",
+      (void *) &pair_creator<granfric::LawKind::WALTON>, true);
+  add(reg, lmp, handle, "pair", "hardsphere/jz",
+      "GRANFRIC hard discs/spheres, Jenkins-Zhang rule (qn, qt, kappa_s, kappa_d)",
+      (void *) &pair_creator<granfric::LawKind::JZ>, true);
+  add(reg, lmp, handle, "fix", "hardsphere/ed",
+      "GRANFRIC exact event-driven integrator for hard spheres and discs",
+      (void *) &style_creator<FixHardsphereED>, false);
+  add(reg, lmp, handle, "compute", "hardsphere/temp",
+      "GRANFRIC translational and rotational temperatures of hard spheres and discs",
+      (void *) &style_creator<ComputeHardsphereTemp>, false);
+  add(reg, lmp, handle, "compute", "hardsphere/collisions",
+      "GRANFRIC collision statistics of fix hardsphere/ed",
+      (void *) &style_creator<ComputeHardsphereCollisions>, false);
 }

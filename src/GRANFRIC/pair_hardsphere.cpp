@@ -266,7 +266,8 @@ void PairHardsphere::init_style()
     error->all(FLERR, "Pair style {} inertia disc requires a 2d simulation (dimension 2)",
                law_style(lawkind));
 
-  neighbor->add_request(this, NeighConst::REQ_SIZE);
+  // no neighbor list: fix hardsphere/ed finds partners with its own cell grid, and compute
+  // pair/local requests an occasional list of its own
 
   // largest radius per type, for the cutoffs
   const int ntypes = atom->ntypes;
@@ -421,6 +422,10 @@ void *PairHardsphere::extract(const char *str, int &dim)
 {
   dim = 0;
   if (strcmp(str, "inertia") == 0) return (void *) &qshape;
+  // granfric::LawParams[ntypes+1][ntypes+1], for code that cannot see this class
+  dim = 2;
+  if (strcmp(str, "hardsphere_laws") == 0) return (void *) params;
+  dim = 0;
   return nullptr;
 }
 

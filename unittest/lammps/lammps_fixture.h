@@ -23,7 +23,9 @@ namespace granfric_test {
 
 bool verbose();
 
-// a LAMMPS instance with the GRANFRIC plugin loaded; output goes nowhere unless verbose
+// a LAMMPS instance with the GRANFRIC plugin loaded; output goes nowhere unless verbose.
+// LAMMPS registers a plugin file with the first live instance that loads it: keep one instance
+// alive at a time.
 std::unique_ptr<LAMMPS_NS::LAMMPS> make_lammps();
 
 // run commands, one per line (a string may hold several lines)

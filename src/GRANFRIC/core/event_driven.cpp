@@ -16,6 +16,8 @@ void EDStats::add(const EDStats &o)
   crossings += o.crossings;
   max_collisions_one_particle = std::max(max_collisions_one_particle, o.max_collisions_one_particle);
   dE += o.dE;
+  if (gamma_hist.size() < o.gamma_hist.size()) gamma_hist.resize(o.gamma_hist.size(), 0);
+  for (size_t k = 0; k < o.gamma_hist.size(); k++) gamma_hist[k] += o.gamma_hist[k];
 }
 
 void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawParams> &table)
@@ -234,6 +236,11 @@ void EventDriven::collide_pair(int i)
   stats.dE += c.dE;
   if (c.sliding) stats.sliding++;
   if (c.energy_created) stats.energy_created++;
+  if (opt.gamma_bins > 0) {
+    const int nb = opt.gamma_bins;
+    int k = (int) ((c.gamma() - 0.5 * M_PI) / (0.5 * M_PI) * nb);
+    stats.gamma_hist[std::min(nb - 1, std::max(0, k))]++;
+  }
   const long ni = ++p.ncollisions, nj = ++q.ncollisions;
   stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, std::max(ni, nj));
   if (ni > opt.max_collisions || nj > opt.max_collisions) {
@@ -275,6 +282,7 @@ void EventDriven::cross(int i)
 EDStats EventDriven::run(double t_end)
 {
   stats = EDStats();
+  stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
   now = 0.0;
   const int n = (int) particles.size();
   for (auto &p : particles) {

@@ -53,12 +53,14 @@ struct EDOptions {
   Vec3 gravity;
   double tc = 0.0;                      // TC model duration (0: off)
   long max_collisions = 1000000;        // per particle per window (inelastic-collapse guard)
+  int gamma_bins = 0;                   // > 0: histogram of impact angles in (pi/2, pi]
 };
 
 struct EDStats {
   long collisions = 0, sliding = 0, tc_elastic = 0, energy_created = 0, crossings = 0;
   long max_collisions_one_particle = 0;
   double dE = 0.0;                      // sum of collision energy changes (< 0: dissipated)
+  std::vector<long> gamma_hist;         // impact angles, EDOptions::gamma_bins bins
   void add(const EDStats &o);
 };
 

@@ -1,0 +1,42 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   GRANFRIC: compute ID group hardsphere/collisions fixID [bins N]
+   Statistics of the collisions processed by fix hardsphere/ed fixID over a window (the time
+   since this compute was last invoked, or since it was defined):
+   vector: 1 collision frequency per particle, 2 <dE> per collision, 3 sliding fraction,
+           4 collisions in the window, 5 window length
+   array (N x 2): impact angle gamma at the bin centre, probability density P(gamma)
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_H
+#define LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_H
+
+#include "compute.h"
+
+#include "core/event_driven.h"
+
+#include <string>
+
+namespace LAMMPS_NS {
+
+class ComputeHardsphereCollisions : public Compute {
+ public:
+  ComputeHardsphereCollisions(class LAMMPS *, int, char **);
+  ~ComputeHardsphereCollisions() override;
+  void init() override;
+  void compute_vector() override;
+  void compute_array() override;
+
+ private:
+  std::string fixid;
+  class FixHardsphereED *fix;
+  int nbins;
+  granfric::EDStats seen;     // cumulative statistics at the start of the window
+  double seen_time;
+  bool started;
+  bigint computed_step;
+  void update_window();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

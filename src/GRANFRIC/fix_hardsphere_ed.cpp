@@ -1,0 +1,374 @@
+/* ----------------------------------------------------------------------
+   GRANFRIC: fix hardsphere/ed (see fix_hardsphere_ed.h and doc/fix_hardsphere_ed.rst)
+------------------------------------------------------------------------- */
+
+#include "fix_hardsphere_ed.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "pair_hardsphere.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using granfric::INF;
+
+// per-atom values exchanged to build the window: tag, x, v, omega, radius, rmass, type, tlast
+static constexpr int NPACK = 14;
+
+/* ---------------------------------------------------------------------- */
+
+FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), tc(0.0), maxevents(1000000), tlast(nullptr), pair(nullptr), cum_time(0.0),
+    gamma_bins(0)
+{
+  gravity[0] = gravity[1] = gravity[2] = 0.0;
+  int iarg = 3;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "gravity") == 0) {
+      if (iarg + 4 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed gravity", error);
+      for (int d = 0; d < 3; d++) gravity[d] = utils::numeric(FLERR, arg[iarg + 1 + d], false, lmp);
+      iarg += 4;
+    } else if (strcmp(arg[iarg], "tc") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed tc", error);
+      tc = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (tc < 0.0)
+        error->all(FLERR, "Fix hardsphere/ed tc = {} must be >= 0 (0: TC model off)", tc);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "maxevents") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed maxevents", error);
+      maxevents = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (maxevents < 1)
+        error->all(FLERR, "Fix hardsphere/ed maxevents = {} must be >= 1", maxevents);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "Unknown fix hardsphere/ed keyword: {} (allowed: gravity, tc, maxevents)",
+                 arg[iarg]);
+    }
+  }
+  if (domain->dimension == 2 && gravity[2] != 0.0)
+    error->all(FLERR, "Fix hardsphere/ed gravity must have gz = 0 in a 2d simulation");
+
+  time_integrate = 1;
+  vector_flag = 1;
+  size_vector = NVECTOR;
+  global_freq = 1;
+  extvector = 0;
+  restart_global = 1;
+  restart_peratom = 1;
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+  for (double &t : totals) t = 0.0;
+
+  FixHardsphereED::grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nmax; i++) tlast[i] = -INF;
+}
+
+FixHardsphereED::~FixHardsphereED()
+{
+  if (copymode) return;
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(tlast);
+}
+
+int FixHardsphereED::setmask()
+{
+  return INITIAL_INTEGRATE;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixHardsphereED::init()
+{
+  pair = dynamic_cast<PairHardsphere *>(force->pair);
+  if (!pair)
+    error->all(FLERR,
+               "Fix hardsphere/ed requires pair style hardsphere/rough, hardsphere/walton or "
+               "hardsphere/jz (found {})",
+               force->pair_style ? force->pair_style : "none");
+  if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
+    error->all(FLERR, "Fix hardsphere/ed requires atom_style sphere (radius, mass, omega)");
+  if (igroup != 0)
+    error->all(FLERR, "Fix hardsphere/ed must be applied to group all (it moves every atom)");
+  if (domain->triclinic) error->all(FLERR, "Fix hardsphere/ed does not support triclinic boxes");
+  for (int d = 0; d < domain->dimension; d++)
+    if (!domain->periodicity[d])
+      error->all(FLERR,
+                 "Fix hardsphere/ed needs periodic boundaries in x, y{} (walls for "
+                 "non-periodic boundaries are not available yet)",
+                 domain->dimension == 3 ? " and z" : "");
+
+  for (const auto &f : modify->get_fix_list()) {
+    if (f == this) continue;
+    if (utils::strmatch(f->style, "^gravity"))
+      error->all(FLERR,
+                 "Fix {} (gravity) acts together with fix hardsphere/ed {}: use the gravity "
+                 "keyword of fix hardsphere/ed instead",
+                 f->id, id);
+    if (f->time_integrate)
+      error->all(FLERR,
+                 "Fix {} ({}) integrates the same atoms as fix hardsphere/ed {}: hard particles "
+                 "must be moved by fix hardsphere/ed alone",
+                 f->id, f->style, id);
+  }
+  if (comm->nprocs > 1 && comm->me == 0)
+    error->warning(FLERR,
+                   "Fix hardsphere/ed on {} MPI ranks: every rank processes the whole window "
+                   "(exact, same trajectory as serial, no parallel speedup yet)",
+                   comm->nprocs);
+}
+
+void FixHardsphereED::setup(int)
+{
+  const double *radius = atom->radius;
+  int bad = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!(radius[i] > 0.0)) bad = 1;
+  int any;
+  MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any) error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0");
+  configure_core();
+}
+
+void FixHardsphereED::request_gamma_bins(int nbins)
+{
+  if (gamma_bins && gamma_bins != nbins)
+    error->all(FLERR, "Fix hardsphere/ed {}: computes asked for {} and {} impact-angle bins; use "
+               "one bin count per fix", id, gamma_bins, nbins);
+  gamma_bins = nbins;
+}
+
+double FixHardsphereED::shape_factor() const
+{
+  return pair ? pair->shape_factor() : 0.4;
+}
+
+void FixHardsphereED::configure_core()
+{
+  granfric::EDOptions o;
+  o.dim = domain->dimension;
+  for (int d = 0; d < 3; d++) {
+    o.lo[d] = domain->boxlo[d];
+    o.hi[d] = domain->boxhi[d];
+    o.periodic[d] = domain->periodicity[d];
+  }
+  o.gravity = granfric::Vec3(gravity[0], gravity[1], gravity[2]);
+  o.tc = tc;
+  o.max_collisions = maxevents;
+  o.gamma_bins = gamma_bins;
+  const int nt = atom->ntypes;
+  std::vector<granfric::LawParams> laws((nt + 1) * (nt + 1));
+  for (int i = 1; i <= nt; i++)
+    for (int j = 1; j <= nt; j++) laws[i * (nt + 1) + j] = pair->law(i, j);
+  ed.configure(o, nt, laws);
+}
+
+double FixHardsphereED::window_start_time() const
+{
+  return update->atime + (double) (update->ntimestep - 1 - update->atimestep) * update->dt;
+}
+
+/* ----------------------------------------------------------------------
+   one window: gather the system (ordered by atom ID, so the result does not depend on the
+   number of ranks or on atom sorting), run the core, take back the owned atoms
+------------------------------------------------------------------------- */
+
+void FixHardsphereED::initial_integrate(int)
+{
+  const int nlocal = atom->nlocal;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *type = atom->type;
+  const tagint *tag = atom->tag;
+  const double dt = update->dt;
+  const double t0 = window_start_time();
+
+  sendbuf.resize((size_t) nlocal * NPACK);
+  for (int i = 0; i < nlocal; i++) {
+    double *b = &sendbuf[(size_t) i * NPACK];
+    b[0] = (double) tag[i];
+    for (int d = 0; d < 3; d++) {
+      b[1 + d] = x[i][d];
+      b[4 + d] = v[i][d];
+      b[7 + d] = omega[i][d];
+    }
+    b[10] = radius[i];
+    b[11] = rmass[i];
+    b[12] = (double) type[i];
+    b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
+  }
+  const int nprocs = comm->nprocs, me = comm->me;
+  counts.resize(nprocs);
+  displs.resize(nprocs);
+  int mysize = nlocal * NPACK;
+  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  int total = 0;
+  for (int p = 0; p < nprocs; p++) {
+    displs[p] = total;
+    total += counts[p];
+  }
+  recvbuf.resize(total);
+  MPI_Allgatherv(sendbuf.data(), mysize, MPI_DOUBLE, recvbuf.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, world);
+  const int ntotal = total / NPACK;
+
+  order.resize(ntotal);
+  for (int k = 0; k < ntotal; k++) order[k] = {recvbuf[(size_t) k * NPACK], k};
+  std::sort(order.begin(), order.end());
+
+  const double q = pair->shape_factor();
+  ed.particles.resize(ntotal);
+  mine.assign(nlocal, -1);
+  const int myfirst = displs[me] / NPACK;
+  for (int s = 0; s < ntotal; s++) {
+    const int k = order[s].second;
+    const double *b = &recvbuf[(size_t) k * NPACK];
+    granfric::EDParticle &p = ed.particles[s];
+    p.x = granfric::Vec3(b[1], b[2], b[3]);
+    p.v = granfric::Vec3(b[4], b[5], b[6]);
+    p.w = granfric::Vec3(b[7], b[8], b[9]);
+    p.a = b[10];
+    p.m = b[11];
+    p.q = q;
+    p.type = (int) b[12];
+    p.t_last = b[13];
+    if (k >= myfirst && k < myfirst + nlocal) mine[k - myfirst] = s;
+  }
+
+  try {
+    last = ed.run(dt);
+  } catch (granfric::EventCapError &e) {
+    error->all(FLERR,
+               "Fix hardsphere/ed: atoms {} and {} collided {} times within step {} (maxevents "
+               "{}), at time {}: inelastic collapse. Use the TC model (keyword tc) or raise "
+               "maxevents",
+               (tagint) order[e.i].first, (tagint) order[e.j].first, e.n, update->ntimestep,
+               maxevents, t0 + e.t);
+  } catch (std::exception &e) {
+    error->all(FLERR, "Fix hardsphere/ed: {}", e.what());
+  }
+
+  // owned atoms back; wrap those that left the box (image flags follow) and reneighbor if any
+  // atom left its subdomain
+  imageint *image = atom->image;
+  int left = 0;
+  for (int i = 0; i < nlocal; i++) {
+    const granfric::EDParticle &p = ed.particles[mine[i]];
+    p.x.to(x[i]);
+    p.v.to(v[i]);
+    p.w.to(omega[i]);
+    tlast[i] = p.t_last == -INF ? -INF : p.t_last + t0;
+    bool out = false;
+    for (int d = 0; d < domain->dimension; d++)
+      if (x[i][d] < domain->sublo[d] || x[i][d] >= domain->subhi[d]) out = true;
+    if (out) {
+      left = 1;
+      domain->remap(x[i], image[i]);
+    }
+  }
+  int anyleft;
+  MPI_Allreduce(&left, &anyleft, 1, MPI_INT, MPI_MAX, world);
+  if (anyleft) {
+    next_reneighbor = update->ntimestep;
+    totals[FORCED_REBUILDS] += 1.0;
+  }
+
+  cum.add(last);
+  cum_time += dt;
+  totals[STEP_COLLISIONS] = (double) last.collisions;
+  totals[COLLISIONS] += (double) last.collisions;
+  totals[DISSIPATED] -= last.dE * force->mvv2e;
+  totals[SLIDING] += (double) last.sliding;
+  totals[MAX_ONE_PARTICLE] = (double) last.max_collisions_one_particle;
+  totals[TC_ELASTIC] += (double) last.tc_elastic;
+  totals[ENERGY_CREATING] += (double) last.energy_created;
+}
+
+double FixHardsphereED::compute_vector(int n)
+{
+  return totals[n];
+}
+
+/* ---------------------------------------------------------------------- per-atom state */
+
+double FixHardsphereED::memory_usage()
+{
+  return (double) atom->nmax * sizeof(double) +
+      (double) ed.particles.capacity() * sizeof(granfric::EDParticle) +
+      (double) (sendbuf.capacity() + recvbuf.capacity()) * sizeof(double) +
+      (double) order.capacity() * sizeof(std::pair<double, int>);
+}
+
+void FixHardsphereED::grow_arrays(int nmax)
+{
+  memory->grow(tlast, nmax, "hardsphere/ed:tlast");
+}
+
+void FixHardsphereED::copy_arrays(int i, int j, int)
+{
+  tlast[j] = tlast[i];
+}
+
+int FixHardsphereED::pack_exchange(int i, double *buf)
+{
+  buf[0] = tlast[i];
+  return 1;
+}
+
+int FixHardsphereED::unpack_exchange(int nlocal, double *buf)
+{
+  tlast[nlocal] = buf[0];
+  return 1;
+}
+
+void FixHardsphereED::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    int size = NVECTOR * sizeof(double);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(totals, sizeof(double), NVECTOR, fp);
+  }
+}
+
+void FixHardsphereED::restart(char *buf)
+{
+  memcpy(totals, buf, NVECTOR * sizeof(double));
+}
+
+int FixHardsphereED::pack_restart(int i, double *buf)
+{
+  buf[0] = 2;
+  buf[1] = tlast[i];
+  return 2;
+}
+
+void FixHardsphereED::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  tlast[nlocal] = extra[nlocal][m];
+}
+
+int FixHardsphereED::size_restart(int)
+{
+  return 2;
+}
+
+int FixHardsphereED::maxsize_restart()
+{
+  return 2;
+}

@@ -1,0 +1,91 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   GRANFRIC: fix hardsphere/ed, the exact event-driven integrator for hard spheres and discs.
+
+   fix ID group hardsphere/ed [gravity gx gy gz] [tc t_c] [maxevents N]
+
+   Each time step is a window in which every collision is processed in exact time order with the
+   collision law of the hardsphere pair style (core/event_driven.h); positions, velocities and
+   spins are advanced exactly to the end of the step.
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(hardsphere/ed,FixHardsphereED);
+// clang-format on
+#else
+
+#ifndef LMP_GRANFRIC_FIX_HARDSPHERE_ED_H
+#define LMP_GRANFRIC_FIX_HARDSPHERE_ED_H
+
+#include "fix.h"
+
+#include "core/event_driven.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixHardsphereED : public Fix {
+ public:
+  // output vector entries
+  enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, FORCED_REBUILDS,
+         TC_ELASTIC, ENERGY_CREATING, NVECTOR };
+
+  FixHardsphereED(class LAMMPS *, int, char **);
+  ~FixHardsphereED() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void initial_integrate(int) override;
+  double compute_vector(int) override;
+
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+  // for computes and tests
+  const granfric::EDStats &step_stats() const { return last; }
+  // everything since the fix was created (or read from a restart file)
+  const granfric::EDStats &cumulative() const { return cum; }
+  // elapsed simulated time covered by cumulative()
+  double cumulative_time() const { return cum_time; }
+  // a compute asks for impact-angle histograms with this many bins (one size per fix)
+  void request_gamma_bins(int nbins);
+  double shape_factor() const;
+
+ protected:
+  double gravity[3];
+  double tc;
+  long maxevents;
+  double *tlast;                         // per atom: absolute time of the last collision
+  class PairHardsphere *pair;
+
+  granfric::EventDriven ed;
+  granfric::EDStats last;                // last step
+  granfric::EDStats cum;                 // cumulative
+  double cum_time;
+  int gamma_bins;
+  double totals[NVECTOR];                // running totals (restart)
+
+  // gathered system (every rank runs the whole window; see doc)
+  std::vector<double> sendbuf, recvbuf;
+  std::vector<int> counts, displs;
+  std::vector<std::pair<double, int>> order;    // (tag, index in recvbuf) sorted by tag
+  std::vector<int> mine;                        // core index of each owned atom
+
+  void configure_core();
+  double window_start_time() const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,51 @@
+"""Readers for LAMMPS output: thermo blocks of log files and fix ave/time files."""
+import numpy as np
+
+
+def read_thermo(path, block=-1):
+    """Thermo table of a LAMMPS log file as a dict column -> numpy array. block selects one run
+    section (default: the last one)."""
+    blocks = []
+    cols = None
+    rows = []
+    with open(path) as f:
+        for line in f:
+            words = line.split()
+            if words and words[0] == "Step":
+                cols, rows = words, []
+                continue
+            if cols is not None:
+                if len(words) == len(cols):
+                    try:
+                        rows.append([float(w) for w in words])
+                        continue
+                    except ValueError:
+                        pass
+                if rows or (words and words[0] == "Loop"):
+                    blocks.append((cols, rows))
+                cols = None
+    if cols is not None and rows:
+        blocks.append((cols, rows))
+    if not blocks:
+        raise ValueError(f"no thermo output in {path}")
+    cols, rows = blocks[block]
+    data = np.array(rows, dtype=float).reshape(-1, len(cols))
+    return {c: data[:, k] for k, c in enumerate(cols)}
+
+
+def read_ave_time(path):
+    """A fix ave/time file (scalar/vector mode): dict column -> array (column names from the
+    second comment line)."""
+    names, rows = None, []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#"):
+                words = line[1:].split()
+                if words:
+                    names = words
+                continue
+            if line.strip():
+                rows.append([float(w) for w in line.split()])
+    data = np.array(rows, dtype=float)
+    names = names if names and len(names) == data.shape[1] else [f"c{k}" for k in range(data.shape[1])]
+    return {n: data[:, k] for k, n in enumerate(names)}

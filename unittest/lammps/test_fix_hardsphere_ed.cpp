@@ -1,0 +1,278 @@
+// fix hardsphere/ed through LAMMPS: whole trajectories equal to the brute-force reference
+// (2D and 3D, every law, short and long steps), restart continuity, the TC model against the
+// event cap in a collapsing system, and every invalid keyword or combination.
+#include "lammps_fixture.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "fix.h"
+#include "force.h"
+#include "modify.h"
+#include "pair.h"
+#include "update.h"
+
+#include "reference_ed.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <cstdio>
+#include <string>
+
+using namespace granfric_test;
+using granfric::Vec3;
+
+namespace {
+
+// a random gas of two sizes (diameters 0.8 and 1.2), no overlaps, zero total momentum
+std::string gas(int dim, int n, double side, unsigned seed)
+{
+  std::string s = "units lj\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n";
+  if (dim == 2)
+    s += "dimension 2\nregion box block 0 " + std::to_string(side) + " 0 " + std::to_string(side) +
+        " -0.5 0.5\n";
+  else
+    s += "region box block 0 " + std::to_string(side) + " 0 " + std::to_string(side) + " 0 " +
+        std::to_string(side) + "\n";
+  s += "create_box 2 box\n";
+  s += "create_atoms 1 random " + std::to_string(n) + " " + std::to_string(seed) +
+      " NULL overlap 1.25 maxtry 10000\n";
+  s += "set type 1 type/fraction 2 0.5 " + std::to_string(seed + 1) + "\n";
+  s += "set type 1 diameter 0.8\nset type 2 diameter 1.2\n";
+  s += "set type 1 density 1.0\nset type 2 density 1.5\n";
+  s += "velocity all create 1.0 " + std::to_string(seed + 2) + " loop geom mom yes\n";
+  if (dim == 2)
+    s += "variable wz atom 0.9*sin(2.1*x+1.3*y)\nset group all omega 0.0 0.0 v_wz\n";
+  else
+    s += "variable wx atom 0.5*sin(2.3*x+1.1*z)\nvariable wy atom 0.5*cos(1.9*y+0.7*z)\n"
+         "variable wz atom 0.5*sin(3.1*x+1.7*y+1)\nset group all omega v_wx v_wy v_wz\n";
+  return s;
+}
+
+// the LAMMPS system as a brute-force Reference (positions unwrapped with image flags)
+Reference reference_of(LAMMPS_NS::LAMMPS *lmp)
+{
+  Reference ref;
+  auto *atom = lmp->atom;
+  auto *domain = lmp->domain;
+  // the pair style lives in the plugin: reach its laws and q through Pair::extract
+  int dim;
+  auto **laws = (granfric::LawParams **) lmp->force->pair->extract("hardsphere_laws", dim);
+  const double q = *(double *) lmp->force->pair->extract("inertia", dim);
+  ref.dim = domain->dimension;
+  ref.lo = Vec3(domain->boxlo[0], domain->boxlo[1], domain->boxlo[2]);
+  ref.L = Vec3(domain->prd[0], domain->prd[1], domain->prd[2]);
+  ref.ntypes = atom->ntypes;
+  ref.laws.resize((ref.ntypes + 1) * (ref.ntypes + 1));
+  for (int i = 1; i <= ref.ntypes; i++)
+    for (int j = 1; j <= ref.ntypes; j++) ref.laws[i * (ref.ntypes + 1) + j] = laws[i][j];
+  ref.p.resize(atom->natoms);
+  for (int i = 0; i < atom->nlocal; i++) {
+    RefParticle &p = ref.p[atom->tag[i] - 1];
+    double xu[3];
+    domain->unmap(atom->x[i], atom->image[i], xu);
+    p.x = Vec3::from(xu);
+    p.v = Vec3::from(atom->v[i]);
+    p.w = Vec3::from(atom->omega[i]);
+    p.a = atom->radius[i];
+    p.m = atom->rmass[i];
+    p.q = q;
+    p.type = atom->type[i];
+  }
+  return ref;
+}
+
+double max_deviation(LAMMPS_NS::LAMMPS *lmp, const Reference &ref)
+{
+  auto *atom = lmp->atom;
+  double worst = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const RefParticle &p = ref.p[atom->tag[i] - 1];
+    double xu[3];
+    lmp->domain->unmap(atom->x[i], atom->image[i], xu);
+    worst = std::max({worst, norm(Vec3::from(xu) - p.x), norm(Vec3::from(atom->v[i]) - p.v),
+                      p.a * norm(Vec3::from(atom->omega[i]) - p.w)});
+  }
+  return worst;
+}
+
+struct TrajCase {
+  int dim;
+  const char *pair;
+  const char *coeffs;
+  double dt;
+  int steps;
+  const char *fixargs;
+};
+
+class FixTrajectory : public ::testing::TestWithParam<TrajCase> {};
+
+TEST_P(FixTrajectory, EqualsBruteForceReference)
+{
+  const TrajCase c = GetParam();
+  auto lmp = make_lammps();
+  run(lmp.get(), gas(c.dim, c.dim == 2 ? 150 : 120, c.dim == 2 ? 22.0 : 9.0, 4711));
+  run(lmp.get(), std::string("pair_style ") + c.pair + "\n" + c.coeffs);
+  run(lmp.get(), std::string("fix ed all hardsphere/ed ") + c.fixargs + "\ntimestep " +
+                     std::to_string(c.dt) + "\nthermo 0\nrun 0 post no");
+  Reference ref = reference_of(lmp.get());
+  auto *fix = lmp->modify->get_fix_by_id("ed");
+  if (std::string(c.fixargs).find("gravity") != std::string::npos) {
+    double g[3];
+    std::sscanf(std::strstr(c.fixargs, "gravity"), "gravity %lf %lf %lf", &g[0], &g[1], &g[2]);
+    ref.gravity = Vec3(g[0], g[1], g[2]);
+  }
+  if (std::string(c.fixargs).find("tc") != std::string::npos)
+    std::sscanf(std::strstr(c.fixargs, "tc"), "tc %lf", &ref.tc);
+  run(lmp.get(), "run " + std::to_string(c.steps) + " post no");
+  ref.run_until(c.dt * c.steps);
+  const long ncoll = (long) fix->compute_vector(1);
+  EXPECT_GT(ncoll, (long) ref.p.size()) << "several collisions per particle";
+  EXPECT_EQ(ncoll, ref.collisions);
+  EXPECT_NEAR(fix->compute_vector(2), -ref.dE, 1e-9 * std::fabs(ref.dE));
+  EXPECT_LT(max_deviation(lmp.get(), ref), 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Lammps, FixTrajectory,
+    ::testing::Values(
+        TrajCase{2, "hardsphere/rough inertia disc", "pair_coeff * * 0.9 0.3", 0.05, 60, ""},
+        TrajCase{2, "hardsphere/walton", "pair_coeff * * 0.95 0.3 0.4\npair_coeff 1 2 0.8 inf 0.2", 2.0, 2, ""},
+        TrajCase{2, "hardsphere/jz inertia disc", "pair_coeff * * 0.05 0.05 0.3 0.3", 0.01, 300,
+                 "gravity 0.1 -0.3 0.0"},
+        TrajCase{3, "hardsphere/rough", "pair_coeff * * 0.8 -0.2", 0.3, 10, "tc 0.01"},
+        TrajCase{3, "hardsphere/walton inertia 0.35", "pair_coeff * * 0.9 0.2 0.5", 0.02, 120,
+                 "gravity 0.0 0.0 -0.5"},
+        TrajCase{3, "hardsphere/jz", "pair_coeff * * 0.1 0.2 0.5 0.4", 4.0, 1, ""}));
+
+TEST(FixHardsphereED, RestartContinuesTheTrajectory)
+{
+  const std::string setup = gas(2, 150, 22.0, 99) +
+      "pair_style hardsphere/walton\npair_coeff * * 0.8 0.3 0.4\n"
+      "fix ed all hardsphere/ed tc 0.05\ntimestep 0.1\nthermo 0\n";
+  auto a = make_lammps();
+  run(a.get(), setup + "run 40 post no");
+  Reference ra = reference_of(a.get());
+  const double colla = a->modify->get_fix_by_id("ed")->compute_vector(1);
+  a.reset();    // one LAMMPS instance at a time: a plugin is registered with one instance only
+
+  const std::string rst = "granfric_test_ed_" + std::to_string(::getpid()) + ".restart";
+  {
+    auto b = make_lammps();
+    run(b.get(), setup + "run 20 post no\nwrite_restart " + rst);
+  }
+  auto c = make_lammps();
+  run(c.get(), "read_restart " + rst + "\ncomm_modify vel yes\nfix ed all hardsphere/ed tc 0.05\n"
+               "timestep 0.1\nthermo 0\nrun 20 post no");
+  std::remove(rst.c_str());
+  EXPECT_EQ(max_deviation(c.get(), ra), 0.0) << "restart must continue the very same trajectory";
+  EXPECT_EQ(c->modify->get_fix_by_id("ed")->compute_vector(1), colla)
+      << "collision totals are kept in the restart file";
+}
+
+// r = 0.5 at area fraction 0.6: inelastic collapse without the TC model
+std::string collapsing()
+{
+  return "units lj\ndimension 2\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n"
+         "lattice sq 0.7639437\nregion box block 0 50 0 50 -0.5 0.5\ncreate_box 1 box\n"
+         "create_atoms 1 box\nset type 1 diameter 1.0\nset type 1 density 1.2732395\n"
+         "velocity all create 1.0 3 loop geom mom yes\n"
+         "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.5 -1.0\ntimestep 1.0\n"
+         "thermo 0\n";
+}
+
+TEST(FixHardsphereED, CollapseStopsWithClearErrorWithoutTC)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), collapsing() + "fix ed all hardsphere/ed maxevents 100000");
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_LMP_ERROR(lmp.get(), "run 100 post no",
+                   "Fix hardsphere/ed: atoms [0-9]+ and [0-9]+ collided [0-9]+ times within step "
+                   "[0-9]+ \\(maxevents 100000\\).*inelastic collapse. Use the TC model");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 120.0);
+}
+
+TEST(FixHardsphereED, CollapseAvoidedWithTC)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), collapsing() + "fix ed all hardsphere/ed tc 1e-4 maxevents 100000");
+  EXPECT_EQ(error_of(lmp.get(), "run 100 post no"), "");
+  auto *fix = lmp->modify->get_fix_by_id("ed");
+  EXPECT_GT(fix->compute_vector(6), 0.0) << "some collisions were made elastic";
+  EXPECT_LT(fix->compute_vector(4), 100000.0);
+}
+
+class FixErrors : public ::testing::Test {
+ protected:
+  std::unique_ptr<LAMMPS_NS::LAMMPS> lmp;
+  void SetUp() override
+  {
+    lmp = make_lammps();
+    run(lmp.get(), gas(2, 20, 10.0, 5) + "pair_style hardsphere/rough\npair_coeff * * 0.9 0.0\n");
+  }
+};
+
+TEST_F(FixErrors, Keywords)
+{
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed tc -1",
+                   "tc = -1 must be >= 0 \\(0: TC model off\\)");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed tc", "Illegal fix hardsphere/ed tc");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed maxevents 0", "maxevents = 0 must be >= 1");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed maxevents 1.5", "Expected integer");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed gravity 0 -1",
+                   "Illegal fix hardsphere/ed gravity");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed gravity 0 -1 0.5",
+                   "gravity must have gz = 0 in a 2d simulation");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed gravity a b 0", "Expected floating point");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed speed 2",
+                   "Unknown fix hardsphere/ed keyword: speed \\(allowed: gravity, tc, maxevents\\)");
+}
+
+TEST_F(FixErrors, Combinations)
+{
+  run(lmp.get(), "fix ed all hardsphere/ed\nfix nve all nve/sphere");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "Fix nve \\(nve/sphere\\) integrates the same atoms as fix "
+                                       "hardsphere/ed ed");
+  run(lmp.get(), "unfix nve\nfix g all gravity 1.0 vector 0 -1 0");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "Fix g \\(gravity\\) acts together with fix hardsphere/ed "
+                                       "ed: use the gravity keyword");
+  run(lmp.get(), "unfix g\ngroup half id <= 10\nunfix ed\nfix ed half hardsphere/ed");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "must be applied to group all");
+  run(lmp.get(), "unfix ed\nfix ed all hardsphere/ed\nrun 0 post no");
+}
+
+TEST_F(FixErrors, RefusesOtherPairStyles)
+{
+  run(lmp.get(), "pair_style granular\npair_coeff * * hooke 1000.0 50.0 tangential linear_nohistory 1.0 0.4\n"
+                 "fix ed all hardsphere/ed");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0",
+                   "requires pair style hardsphere/rough, hardsphere/walton or hardsphere/jz "
+                   "\\(found granular\\)");
+}
+
+TEST(FixErrorsBox, NonPeriodicAndPointParticles)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\nboundary p f p\ncomm_modify vel yes\n"
+                 "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 5 0\n"
+                 "pair_style hardsphere/rough\npair_coeff * * 0.9 0.0\nfix ed all hardsphere/ed");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "needs periodic boundaries in x, y \\(walls for non-periodic");
+  lmp.reset();
+  auto l2 = make_lammps();
+  run(l2.get(), "units lj\ndimension 2\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n"
+                "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 5 0\n"
+                "set atom 1 diameter 0.0\nset atom 1 mass 1.0\n"
+                "pair_style hardsphere/rough\npair_coeff * * 0.9 0.0\nfix ed all hardsphere/ed");
+  EXPECT_LMP_ERROR(l2.get(), "run 0", "requires every atom to have a radius > 0");
+}
+
+}    // namespace
+
+int main(int argc, char **argv)
+{
+  MPI_Init(&argc, &argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  const int rc = RUN_ALL_TESTS();
+  MPI_Finalize();
+  return rc;
+}
