@@ -29,7 +29,7 @@ static constexpr int NPACK = 14;
 
 FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), tc(0.0), maxevents(1000000), tlast(nullptr), pair(nullptr), cum_time(0.0),
-    gamma_bins(0)
+    gamma_bins(0), queue_valid(false), prev_dt(0.0)
 {
   gravity[0] = gravity[1] = gravity[2] = 0.0;
   int iarg = 3;
@@ -65,8 +65,6 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   restart_global = 1;
   restart_peratom = 1;
-  force_reneighbor = 1;
-  next_reneighbor = -1;
   for (double &t : totals) t = 0.0;
 
   FixHardsphereED::grow_arrays(atom->nmax);
@@ -140,6 +138,7 @@ void FixHardsphereED::setup(int)
   MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
   if (any) error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0");
   configure_core();
+  queue_valid = false;    // a new run may bring new coefficients, a new box or new atoms
 }
 
 void FixHardsphereED::request_gamma_bins(int nbins)
@@ -227,29 +226,67 @@ void FixHardsphereED::initial_integrate(int)
   order.resize(ntotal);
   for (int k = 0; k < ntotal; k++) order[k] = {recvbuf[(size_t) k * NPACK], k};
   std::sort(order.begin(), order.end());
-
-  const double q = pair->shape_factor();
-  ed.particles.resize(ntotal);
   mine.assign(nlocal, -1);
   const int myfirst = displs[me] / NPACK;
   for (int s = 0; s < ntotal; s++) {
     const int k = order[s].second;
-    const double *b = &recvbuf[(size_t) k * NPACK];
-    granfric::EDParticle &p = ed.particles[s];
-    p.x = granfric::Vec3(b[1], b[2], b[3]);
-    p.v = granfric::Vec3(b[4], b[5], b[6]);
-    p.w = granfric::Vec3(b[7], b[8], b[9]);
-    p.a = b[10];
-    p.m = b[11];
-    p.q = q;
-    p.type = (int) b[12];
-    p.t_last = b[13];
     if (k >= myfirst && k < myfirst + nlocal) mine[k - myfirst] = s;
   }
 
+  // Keep the event queue of the previous window when nothing outside this fix touched the
+  // atoms since then: same atoms, and positions, velocities and spins bit for bit what this
+  // fix wrote (every rank sees the same gathered data, so all decide alike).
+  bool reuse = queue_valid && (int) written.size() == ntotal * 9;
+  for (int s = 0; reuse && s < ntotal; s++) {
+    const double *b = &recvbuf[(size_t) order[s].second * NPACK];
+    const granfric::EDParticle &p = ed.particles[s];
+    const double *w = &written[(size_t) s * 9];
+    reuse = order[s].first == prev_tags[s] && b[10] == p.a && b[11] == p.m &&
+        (int) b[12] == p.type && memcmp(b + 4, w + 3, 6 * sizeof(double)) == 0;
+    // positions: what this fix wrote, or that shifted by one period by Domain::pbc()
+    for (int d = 0; reuse && d < 3; d++) {
+      if (b[1 + d] == w[d]) continue;
+      if (!domain->periodicity[d]) {
+        reuse = false;
+      } else if (b[1 + d] == w[d] + domain->prd[d]) {
+        offset[(size_t) s * 3 + d]--;
+      } else if (b[1 + d] == MAX(w[d] - domain->prd[d], domain->boxlo[d])) {
+        offset[(size_t) s * 3 + d]++;
+      } else {
+        reuse = false;
+      }
+    }
+  }
+  if (reuse) {
+    ed.rebase(prev_dt);
+  } else {
+    configure_core();
+    const double q = pair->shape_factor();
+    ed.particles.resize(ntotal);
+    prev_tags.resize(ntotal);
+    for (int s = 0; s < ntotal; s++) {
+      const double *b = &recvbuf[(size_t) order[s].second * NPACK];
+      granfric::EDParticle &p = ed.particles[s];
+      p = granfric::EDParticle();
+      p.x = granfric::Vec3(b[1], b[2], b[3]);
+      p.v = granfric::Vec3(b[4], b[5], b[6]);
+      p.w = granfric::Vec3(b[7], b[8], b[9]);
+      p.a = b[10];
+      p.m = b[11];
+      p.q = q;
+      p.type = (int) b[12];
+      p.t_last = b[13];
+      prev_tags[s] = order[s].first;
+    }
+    ed.start();
+    offset.assign((size_t) ntotal * 3, 0);
+    totals[QUEUE_REBUILDS] += 1.0;
+  }
+
   try {
-    last = ed.run(dt);
+    last = ed.advance_to(dt);
   } catch (granfric::EventCapError &e) {
+    queue_valid = false;
     error->all(FLERR,
                "Fix hardsphere/ed: atoms {} and {} collided {} times within step {} (maxevents "
                "{}), at time {}: inelastic collapse. Use the TC model (keyword tc) or raise "
@@ -257,33 +294,58 @@ void FixHardsphereED::initial_integrate(int)
                (tagint) order[e.i].first, (tagint) order[e.j].first, e.n, update->ntimestep,
                maxevents, t0 + e.t);
   } catch (std::exception &e) {
+    queue_valid = false;
     error->all(FLERR, "Fix hardsphere/ed: {}", e.what());
   }
 
-  // owned atoms back; wrap those that left the box (image flags follow) and reneighbor if any
-  // atom left its subdomain
-  imageint *image = atom->image;
-  int left = 0;
-  for (int i = 0; i < nlocal; i++) {
-    const granfric::EDParticle &p = ed.particles[mine[i]];
-    p.x.to(x[i]);
-    p.v.to(v[i]);
-    p.w.to(omega[i]);
-    tlast[i] = p.t_last == -INF ? -INF : p.t_last + t0;
-    bool out = false;
-    for (int d = 0; d < domain->dimension; d++)
-      if (x[i][d] < domain->sublo[d] || x[i][d] >= domain->subhi[d]) out = true;
-    if (out) {
-      left = 1;
-      domain->remap(x[i], image[i]);
+  // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the
+  // periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
+  // atom more than half a box outside (a step longer than a box crossing) is wrapped here and
+  // its image flags follow. The same arithmetic on every rank.
+  written.resize((size_t) ntotal * 9);
+  jumped.assign((size_t) ntotal * 3, 0);
+  for (int s = 0; s < ntotal; s++) {
+    const granfric::EDParticle &p = ed.particles[s];
+    double *w = &written[(size_t) s * 9];
+    int *off = &offset[(size_t) s * 3];
+    ed.position(s, dt).to(w);
+    for (int d = 0; d < 3; d++) {
+      if (!domain->periodicity[d]) continue;
+      const double L = domain->prd[d];
+      double y = w[d] - off[d] * L;
+      if (y < domain->boxlo[d] - 0.5 * L || y >= domain->boxhi[d] + 0.5 * L) {
+        const int k = (int) std::floor((y - domain->boxlo[d]) / L);
+        off[d] += k;
+        jumped[(size_t) s * 3 + d] = k;
+        y = w[d] - off[d] * L;
+      }
+      w[d] = y;
     }
+    ed.velocity(s, dt).to(w + 3);
+    p.w.to(w + 6);
   }
-  int anyleft;
-  MPI_Allreduce(&left, &anyleft, 1, MPI_INT, MPI_MAX, world);
-  if (anyleft) {
-    next_reneighbor = update->ntimestep;
-    totals[FORCED_REBUILDS] += 1.0;
+  imageint *image = atom->image;
+  for (int i = 0; i < nlocal; i++) {
+    const int s = mine[i];
+    const granfric::EDParticle &p = ed.particles[s];
+    const double *w = &written[(size_t) s * 9];
+    const int *dimg = &jumped[(size_t) s * 3];
+    if (dimg[0] || dimg[1] || dimg[2]) {
+      // wrapped here: x jumped by whole periods, the image flags count them
+      imageint xb = (image[i] & IMGMASK) - IMGMAX + dimg[0];
+      imageint yb = (image[i] >> IMGBITS & IMGMASK) - IMGMAX + dimg[1];
+      imageint zb = (image[i] >> IMG2BITS) - IMGMAX + dimg[2];
+      image[i] = ((imageint) (xb + IMGMAX) & IMGMASK) |
+          (((imageint) (yb + IMGMAX) & IMGMASK) << IMGBITS) |
+          (((imageint) (zb + IMGMAX) & IMGMASK) << IMG2BITS);
+    }
+    memcpy(x[i], w, 3 * sizeof(double));
+    memcpy(v[i], w + 3, 3 * sizeof(double));
+    memcpy(omega[i], w + 6, 3 * sizeof(double));
+    tlast[i] = p.t_last == -INF ? -INF : p.t_last + t0;
   }
+  queue_valid = true;
+  prev_dt = dt;
 
   cum.add(last);
   cum_time += dt;

@@ -28,7 +28,9 @@ namespace LAMMPS_NS {
 class FixHardsphereED : public Fix {
  public:
   // output vector entries
-  enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, FORCED_REBUILDS,
+  // QUEUE_REBUILDS: the fix's own neighbour structure (cell grid and every prediction) rebuilt
+  // from scratch, because something outside the fix changed the atoms or a new run began
+  enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, QUEUE_REBUILDS,
          TC_ELASTIC, ENERGY_CREATING, NVECTOR };
 
   FixHardsphereED(class LAMMPS *, int, char **);
@@ -80,6 +82,13 @@ class FixHardsphereED : public Fix {
   std::vector<int> counts, displs;
   std::vector<std::pair<double, int>> order;    // (tag, index in recvbuf) sorted by tag
   std::vector<int> mine;                        // core index of each owned atom
+  // event queue kept across windows (see initial_integrate)
+  bool queue_valid;
+  double prev_dt;
+  std::vector<double> prev_tags;                // atom IDs in core order
+  std::vector<double> written;                  // x (wrapped), v, omega written at the window end
+  std::vector<int> offset;                      // periods between the core's frame and LAMMPS's
+  std::vector<int> jumped;                      // periods this fix wrapped in the last window
 
   void configure_core();
   double window_start_time() const;

@@ -165,7 +165,9 @@ TEST(FixHardsphereED, RestartContinuesTheTrajectory)
   run(c.get(), "read_restart " + rst + "\ncomm_modify vel yes\nfix ed all hardsphere/ed tc 0.05\n"
                "timestep 0.1\nthermo 0\nrun 20 post no");
   std::remove(rst.c_str());
-  EXPECT_EQ(max_deviation(c.get(), ra), 0.0) << "restart must continue the very same trajectory";
+  // the continuous run keeps its event queue across the step where the other one restarts and
+  // predicts afresh: the same trajectory up to rounding
+  EXPECT_LT(max_deviation(c.get(), ra), 1e-9) << "restart must continue the same trajectory";
   EXPECT_EQ(c->modify->get_fix_by_id("ed")->compute_vector(1), colla)
       << "collision totals are kept in the restart file";
 }

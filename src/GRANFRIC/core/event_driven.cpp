@@ -279,10 +279,8 @@ void EventDriven::cross(int i)
   heap_update(i);
 }
 
-EDStats EventDriven::run(double t_end)
+void EventDriven::start()
 {
-  stats = EDStats();
-  stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
   now = 0.0;
   const int n = (int) particles.size();
   for (auto &p : particles) {
@@ -304,7 +302,14 @@ EDStats EventDriven::run(double t_end)
     hpos[i] = i;
   }
   for (int k = n / 2 - 1; k >= 0; k--) heap_down(k);
+}
 
+EDStats EventDriven::advance_to(double t_end)
+{
+  stats = EDStats();
+  stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
+  for (auto &p : particles) p.ncollisions = 0;
+  const int n = (int) particles.size();
   while (n > 0) {
     const int i = heap[0];
     EDParticle &p = particles[i];
@@ -324,8 +329,26 @@ EDStats EventDriven::run(double t_end)
     }
   }
   now = t_end;
-  for (int i = 0; i < n; i++) advance(i, t_end);
   return stats;
+}
+
+void EventDriven::rebase(double dt)
+{
+  // the same shift for every time keeps the heap ordered (rounding is monotone)
+  for (auto &p : particles) {
+    p.t -= dt;
+    p.et -= dt;
+    p.t_last -= dt;
+  }
+  now -= dt;
+}
+
+EDStats EventDriven::run(double t_end)
+{
+  start();
+  const EDStats s = advance_to(t_end);
+  for (int i = 0; i < (int) particles.size(); i++) advance(i, t_end);
+  return s;
 }
 
 // ---------------------------------------------------------------- heap

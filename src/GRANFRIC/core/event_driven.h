@@ -30,7 +30,7 @@ struct EDParticle {
 
   // internal state
   double t = 0.0;             // local time of x and v
-  uint32_t ncoll = 0;         // collisions in this window: invalidates partners' predictions
+  uint32_t ncoll = 0;         // collisions since start(): invalidates partners' predictions
   int last_partner = -1;      // partner of the last collision
   int last_off[3] = {0, 0, 0};  // periodic image offset of that partner (see eoff)
   int cell = -1;              // linear cell index
@@ -88,6 +88,17 @@ class EventDriven {
 
   // process every event in [0, t_end) and advance all particles to t_end
   EDStats run(double t_end);
+
+  // the same in pieces, keeping the event queue between windows:
+  //   start()          cells and predictions from the particles' x, v, w at time 0
+  //   advance_to(t)    process every event before t (lazy states are not advanced;
+  //                    read them with position() / velocity())
+  //   rebase(dt)       subtract dt from every time, so the next window starts at 0 again
+  // A window sequence start, advance_to(dt), rebase(dt), advance_to(dt), ... follows the same
+  // trajectory as one long window, up to the rounding of the time shifts.
+  void start();
+  EDStats advance_to(double t_end);
+  void rebase(double dt);
 
   // state of particle i at window time t (lazy update, not stored)
   Vec3 position(int i, double t) const;
