@@ -223,9 +223,16 @@ void FixHardsphereED::initial_integrate(int)
                  MPI_DOUBLE, world);
   const int ntotal = total / NPACK;
 
-  order.resize(ntotal);
-  for (int k = 0; k < ntotal; k++) order[k] = {recvbuf[(size_t) k * NPACK], k};
-  std::sort(order.begin(), order.end());
+  // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
+  // step's order usually still holds
+  bool same_order = (int) order.size() == ntotal;
+  for (int s = 0; same_order && s < ntotal; s++)
+    same_order = recvbuf[(size_t) order[s].second * NPACK] == order[s].first;
+  if (!same_order) {
+    order.resize(ntotal);
+    for (int k = 0; k < ntotal; k++) order[k] = {recvbuf[(size_t) k * NPACK], k};
+    std::sort(order.begin(), order.end());
+  }
   mine.assign(nlocal, -1);
   const int myfirst = displs[me] / NPACK;
   for (int s = 0; s < ntotal; s++) {

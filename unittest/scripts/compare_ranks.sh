@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Run unittest/scripts/in.ranks on 1, 2 and 4 MPI ranks and require identical final states.
+#   compare_ranks.sh <tools/lmp> <workdir>
+set -euo pipefail
+lmp=$1
+work=$2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+mkdir -p "$work"
+"$lmp" -in "$here/in.ranks" -var make 1 -var data "$work/ranks.data" -log none -screen none
+for np in 1 2 4; do
+  "$lmp" -np "$np" -in "$here/in.ranks" -var out "$work/state.np$np" -var data "$work/ranks.data" -log none -screen none
+done
+for np in 2 4; do
+  if ! cmp -s <(tail -n +10 "$work/state.np1") <(tail -n +10 "$work/state.np$np"); then
+    echo "FAILED: the final state on $np ranks differs from 1 rank"
+    diff <(tail -n +10 "$work/state.np1") <(tail -n +10 "$work/state.np$np") | head -5
+    exit 1
+  fi
+done
+n=$(($(wc -l < "$work/state.np1") - 9))
+echo "PASSED: $n atoms, identical final state (positions, velocities, spins, images) on 1, 2 and 4 ranks"
