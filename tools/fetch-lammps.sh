@@ -21,19 +21,7 @@ fi
 mkdir -p "$cache"
 
 if ! { [ -f "$cache/$tarball" ] && echo "$sha256  $cache/$tarball" | sha256sum -c --quiet - 2>/dev/null; }; then
-  src_list=/etc/apt/sources.list.d/granfric-trixie-src.sources
-  if [ ! -f "$src_list" ]; then
-    [ "$(id -u)" = 0 ] || { log "need root to add a deb-src entry ($src_list); run as root or pass -D LAMMPS_SOURCE_DIR"; exit 1; }
-    log "adding Debian trixie deb-src entry ($src_list)"
-    cat > "$src_list" <<SRC
-Types: deb-src
-URIs: http://deb.debian.org/debian
-Suites: trixie
-Components: main
-Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-SRC
-    apt-get update -qq >&2
-  fi
+  bash "$(dirname "${BASH_SOURCE[0]}")/deb-src.sh" >&2
   log "downloading Debian source package lammps=$version (orig tarball only)"
   # The .dsc of this version may answer 404 and apt then exits 100 although the orig
   # tarball arrived; the checksum below is what decides success.

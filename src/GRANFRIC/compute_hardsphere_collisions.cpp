@@ -18,8 +18,7 @@
 using namespace LAMMPS_NS;
 
 ComputeHardsphereCollisions::ComputeHardsphereCollisions(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), fix(nullptr), nbins(36), seen_time(0.0), started(false),
-    computed_step(-1)
+    Compute(lmp, narg, arg), fix(nullptr), nbins(36), seen_time(0.0), computed_step(-1)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "compute hardsphere/collisions", error);
   fixid = arg[3];
@@ -67,18 +66,17 @@ void ComputeHardsphereCollisions::init()
     error->all(FLERR, "Compute hardsphere/collisions: fix {} is of style {}, not hardsphere/ed",
                fixid, f->style);
   fix->request_gamma_bins(nbins);
+  // the first window of a run starts with the run
+  seen = fix->cumulative();
+  seen_time = fix->cumulative_time();
+  computed_step = -1;
 }
 
 // statistics since the last window; a vector and an array request on the same step share it
 void ComputeHardsphereCollisions::update_window()
 {
-  if (computed_step == update->ntimestep && started) return;
+  if (computed_step == update->ntimestep) return;
   const granfric::EDStats &now = fix->cumulative();
-  if (!started) {
-    seen = granfric::EDStats();
-    seen_time = 0.0;
-    started = true;
-  }
   const double dt = fix->cumulative_time() - seen_time;
   const long ncoll = now.collisions - seen.collisions;
   const double natoms = (double) atom->natoms;

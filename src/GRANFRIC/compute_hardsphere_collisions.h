@@ -1,7 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    GRANFRIC: compute ID group hardsphere/collisions fixID [bins N]
    Statistics of the collisions processed by fix hardsphere/ed fixID over a window (the time
-   since this compute was last invoked, or since it was defined):
+   since this compute was last invoked, or since the run began):
    vector: 1 collision frequency per particle, 2 <dE> per collision, 3 sliding fraction,
            4 collisions in the window, 5 window length
    array (N x 2): impact angle gamma at the bin centre, probability density P(gamma)
@@ -32,7 +32,6 @@ class ComputeHardsphereCollisions : public Compute {
   int nbins;
   granfric::EDStats seen;     // cumulative statistics at the start of the window
   double seen_time;
-  bool started;
   bigint computed_step;
   void update_window();
 };

@@ -28,8 +28,11 @@ ComputeHardsphereTemp::ComputeHardsphereTemp(LAMMPS *lmp, int narg, char **arg) 
       const std::string val = arg[iarg + 1];
       if (val == "sphere")
         qshape = 0.4;
-      else if (val == "disc")
+      else if (val == "disc") {
+        if (domain->dimension != 2)
+          error->all(FLERR, "Compute hardsphere/temp inertia disc requires a 2d simulation");
         qshape = 0.5;
+      }
       else if (utils::is_double(val)) {
         qshape = utils::numeric(FLERR, val, false, lmp);
         if (!(qshape > 0.0 && qshape <= 1.0))

@@ -12,6 +12,7 @@
 #include "memory.h"
 #include "modify.h"
 #include "pair_hardsphere.h"
+#include "respa.h"
 #include "update.h"
 
 #include <algorithm>
@@ -83,7 +84,12 @@ FixHardsphereED::~FixHardsphereED()
 
 int FixHardsphereED::setmask()
 {
-  return INITIAL_INTEGRATE;
+  return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA;
+}
+
+void FixHardsphereED::initial_integrate_respa(int vflag, int ilevel, int)
+{
+  if (ilevel == nlevels_respa - 1) initial_integrate(vflag);
 }
 
 /* ---------------------------------------------------------------------- */
@@ -101,6 +107,12 @@ void FixHardsphereED::init()
   if (igroup != 0)
     error->all(FLERR, "Fix hardsphere/ed must be applied to group all (it moves every atom)");
   if (domain->triclinic) error->all(FLERR, "Fix hardsphere/ed does not support triclinic boxes");
+  if (domain->box_change)
+    error->all(FLERR, "Fix hardsphere/ed does not support a box that changes during the run");
+  // with run_style respa the window is the outermost step (collisions need no forces)
+  nlevels_respa = 0;
+  if (utils::strmatch(update->integrate_style, "^respa"))
+    nlevels_respa = (dynamic_cast<Respa *>(update->integrate))->nlevels;
   for (int d = 0; d < domain->dimension; d++)
     if (!domain->periodicity[d])
       error->all(FLERR,
@@ -295,11 +307,11 @@ void FixHardsphereED::initial_integrate(int)
   } catch (granfric::EventCapError &e) {
     queue_valid = false;
     error->all(FLERR,
-               "Fix hardsphere/ed: atoms {} and {} collided {} times within step {} (maxevents "
-               "{}), at time {}: inelastic collapse. Use the TC model (keyword tc) or raise "
-               "maxevents",
-               (tagint) order[e.i].first, (tagint) order[e.j].first, e.n, update->ntimestep,
-               maxevents, t0 + e.t);
+               "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
+               "last one with atom {} at time {}: inelastic collapse. Use the TC model (keyword "
+               "tc) or raise maxevents",
+               (tagint) order[e.i].first, e.n, update->ntimestep, maxevents,
+               (tagint) order[e.j].first, t0 + e.t);
   } catch (std::exception &e) {
     queue_valid = false;
     error->all(FLERR, "Fix hardsphere/ed: {}", e.what());

@@ -39,6 +39,7 @@ class FixHardsphereED : public Fix {
   void init() override;
   void setup(int) override;
   void initial_integrate(int) override;
+  void initial_integrate_respa(int, int, int) override;
   double compute_vector(int) override;
 
   double memory_usage() override;
@@ -55,7 +56,7 @@ class FixHardsphereED : public Fix {
 
   // for computes and tests
   const granfric::EDStats &step_stats() const { return last; }
-  // everything since the fix was created (or read from a restart file)
+  // everything since the fix was created (not kept in restart files; the output totals are)
   const granfric::EDStats &cumulative() const { return cum; }
   // elapsed simulated time covered by cumulative()
   double cumulative_time() const { return cum_time; }
@@ -67,6 +68,7 @@ class FixHardsphereED : public Fix {
   double gravity[3];
   double tc;
   long maxevents;
+  int nlevels_respa;
   double *tlast;                         // per atom: absolute time of the last collision
   class PairHardsphere *pair;
 

@@ -109,7 +109,8 @@ struct Reference {
       const Vec3 r = a.x - b.x - Vec3(boff[0] * L.x, boff[1] * L.y, boff[2] * L.z);
       const Vec3 nn = (1.0 / norm(r)) * r;
       LawParams law = laws[a.type * (ntypes + 1) + b.type];
-      if (tc > 0 && (time - a.t_last < tc || time - b.t_last < tc)) law = law.elastic();
+      const double sa = time - a.t_last, sb = time - b.t_last;
+      if (tc > 0 && ((sa >= 0 && sa < tc) || (sb >= 0 && sb < tc))) law = law.elastic();
       const Collision c =
           collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body{b.v, b.w, b.m, b.a, b.q}, nn);
       a.v = c.v1;

@@ -213,7 +213,9 @@ void EventDriven::collide_pair(int i)
   const Vec3 n = (1.0 / norm(r)) * r;
 
   LawParams law = laws[p.type * (ntypes + 1) + q.type];
-  if (opt.tc > 0.0 && (t - p.t_last < opt.tc || t - q.t_last < opt.tc)) {
+  // (a last collision 'in the future' after a clock reset does not count)
+  const double since_p = t - p.t_last, since_q = t - q.t_last;
+  if (opt.tc > 0.0 && ((since_p >= 0.0 && since_p < opt.tc) || (since_q >= 0.0 && since_q < opt.tc))) {
     law = law.elastic();
     stats.tc_elastic++;
   }
