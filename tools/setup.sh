@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Set up GRANFRIC on a fresh Debian 12 machine and run the main job.
-#   bash tools/setup.sh        -> out/ (figure + table); build in $GRANFRIC_BUILD (default build/)
+#   bash tools/setup.sh        -> out/ (figures + reports); build in $GRANFRIC_BUILD (default build/)
 # Steps: Debian packages (if missing) -> LAMMPS 4Feb2025 source from Debian (cached in
 # ~/.cache/granfric) -> LAMMPS + granfricplugin.so build (ccache) -> main job.
 set -euo pipefail
@@ -14,10 +14,9 @@ cmake --build "$build" --parallel "$(nproc)"
 export GRANFRIC_BUILD=$build
 mkdir -p "$out"
 
-echo "== main job: collision laws of the three papers through the GRANFRIC core and LAMMPS"
-PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.collision_demo --out "$out"
-for s in "$root"/examples/collisions/in.*; do
-  (cd "$root/examples/collisions" && "$root/tools/lmp" -in "$(basename "$s")" -var outdir "$out" \
-     -log "$out/log.$(basename "$s" | sed 's/^in\.//')" -screen none)
-done
-echo "== done: $out/collision_laws.png, $out/collision_table.md, $out/log.* and $out/contacts.*"
+echo "== main job: free cooling of rough discs and spheres (Luding et al. 1998), simulation vs theory"
+PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.luding --quick --out "$out/luding1998"
+echo "== collision laws of the three papers through the GRANFRIC core"
+PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.collision_demo --out "$out/collisions" > /dev/null
+echo "== done: $out/luding1998/cooling.png (figure), $out/luding1998/report.md (numbers),"
+echo "         $out/collisions/collision_laws.png"
