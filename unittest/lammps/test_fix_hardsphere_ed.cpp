@@ -252,6 +252,50 @@ TEST_F(FixErrors, RefusesOtherPairStyles)
                    "\\(found granular\\)");
 }
 
+TEST_F(FixErrors, Computes)
+{
+  EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp inertia cube",
+                   "inertia must be sphere, disc or a number 0 < q <= 1, not cube");
+  EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp inertia 1.2",
+                   "inertia q = 1.2 is out of range \\(0 < q <= 1\\)");
+  EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp inertia", "Illegal compute hardsphere/temp inertia");
+  EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp mass 1",
+                   "Unknown compute hardsphere/temp keyword: mass \\(allowed: inertia\\)");
+  EXPECT_LMP_ERROR(lmp.get(), "compute c all hardsphere/collisions",
+                   "Illegal compute hardsphere/collisions");
+  EXPECT_LMP_ERROR(lmp.get(), "compute c all hardsphere/collisions ed bins 0",
+                   "bins = 0 is out of range \\(1..100000\\)");
+  EXPECT_LMP_ERROR(lmp.get(), "compute c all hardsphere/collisions ed window 3",
+                   "Unknown compute hardsphere/collisions keyword: window \\(allowed: bins\\)");
+  run(lmp.get(), "compute c all hardsphere/collisions nofix\nthermo_style custom step c_c[1]");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "fix ID nofix does not exist");
+  run(lmp.get(), "uncompute c\nfix m all momentum 1 linear 1 1 1\n"
+                 "compute c all hardsphere/collisions m\nthermo_style custom step c_c[1]");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "fix m is of style momentum, not hardsphere/ed");
+  run(lmp.get(), "uncompute c\nunfix m\nfix ed all hardsphere/ed\n"
+                 "compute c1 all hardsphere/collisions ed bins 10\n"
+                 "compute c2 all hardsphere/collisions ed bins 20\n"
+                 "thermo_style custom step c_c1[1] c_c2[1]");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "computes asked for 10 and 20 impact-angle bins");
+}
+
+TEST(ComputeTemp, PairStyleWithoutShapeFactorNeedsInertia)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), gas(2, 20, 10.0, 5) +
+                     "pair_style granular\npair_coeff * * hooke 1000.0 50.0 tangential "
+                     "linear_nohistory 1.0 0.4\ncompute t all hardsphere/temp\n"
+                     "thermo_style custom step c_t[1]");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "give it with the inertia keyword");
+  run(lmp.get(), "uncompute t\ncompute t all hardsphere/temp inertia disc\n"
+                 "thermo_style custom step c_t[1] c_t[2]\nrun 0 post no");
+  lmp.reset();
+  auto l3 = make_lammps();
+  run(l3.get(), gas(3, 20, 8.0, 5));
+  EXPECT_LMP_ERROR(l3.get(), "compute t all hardsphere/temp inertia disc",
+                   "inertia disc requires a 2d simulation");
+}
+
 TEST(FixErrorsBox, NonPeriodicAndPointParticles)
 {
   auto lmp = make_lammps();

@@ -1,0 +1,85 @@
+"""GRANFRIC benchmark: collisions per second per core of fix hardsphere/ed through LAMMPS, for
+2D and 3D, N = 10^3 ... 10^6, fractions 0.05 and 0.3, and steps of 0.1 ... 10 mean free times;
+memory per particle. Prints a table and the ratios asked for (cost per collision at N = 10^6
+against N = 10^3); writes bench/results/ed_speed.csv. Not a test: figures, measured in one run.
+
+    PYTHONPATH=tools /usr/bin/python3 bench/ed_speed.py [--quick] [--np 1]
+"""
+import argparse
+import csv
+import os
+import re
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tools"))
+from granfric import lmp  # noqa: E402
+
+
+def run_one(dim, nside, phi, dtmft, ncoll, np_=1):
+    t0 = time.time()
+    p = lmp.run(os.path.join(HERE, "in.speed"), {"dim": dim, "nside": nside, "phi": phi,
+                                                   "dtmft": dtmft, "ncoll": ncoll},
+                np=np_, log=os.devnull, quiet=False)
+    out = p.stdout
+    loop = [float(m) for m in re.findall(r"Loop time of ([0-9.eE+-]+)", out)][-1]
+    bench = re.search(r"BENCH dim (\d) N (\d+) .* collisions (\d+) queue_rebuilds (\d+)", out)
+    mem = re.findall(r"Per MPI rank memory allocation \(min/avg/max\) = [0-9.]+ \| ([0-9.]+)", out)
+    N, coll = int(bench.group(2)), int(bench.group(3))
+    return {"dim": dim, "N": N, "phi": phi, "dt_mft": dtmft, "collisions": coll,
+            "seconds": loop, "coll_per_s": coll / loop / np_,
+            "lammps_MB_per_rank": float(mem[-1]) if mem else float("nan"), "wall": time.time() - t0}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--quick", action="store_true", help="N <= 10^5, fewer steps")
+    ap.add_argument("--np", type=int, default=1)
+    a = ap.parse_args()
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        tqdm = lambda x, **k: x
+    sizes = {2: [32, 100, 316] + ([] if a.quick else [1000]), 3: [10, 22, 46] + ([] if a.quick else [100])}
+    cases = []
+    for dim in (2, 3):
+        for nside in sizes[dim]:
+            for phi in (0.05, 0.3):
+                cases.append((dim, nside, phi, 1.0))
+    for dtmft in (0.1, 0.3, 3.0, 10.0):
+        cases.append((2, 100, 0.3, dtmft))
+    rows = []
+    for dim, nside, phi, dtmft in tqdm(cases, desc="benchmark runs"):
+        ncoll = 10 if nside ** dim >= 10 ** 5 else 20
+        rows.append(run_one(dim, nside, phi, dtmft, ncoll, a.np))
+    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
+    path = os.path.join(HERE, "results", "ed_speed.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    print(f"\n| dim | N | fraction | dt (mean free times) | collisions/s per core | LAMMPS MB/rank | bytes/particle |")
+    print("|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['dim']} | {r['N']} | {r['phi']} | {r['dt_mft']} | {r['coll_per_s']:.3g} | "
+              f"{r['lammps_MB_per_rank']:.1f} | {r['lammps_MB_per_rank'] * 1048576 / r['N']:.0f} |")
+    print()
+    for dim in (2, 3):
+        for phi in (0.05, 0.3):
+            sel = [r for r in rows if r["dim"] == dim and r["phi"] == phi and r["dt_mft"] == 1.0]
+            if len(sel) >= 2:
+                lo, hi = sel[0], sel[-1]
+                print(f"cost per collision {dim}D fraction {phi}: N={hi['N']} / N={lo['N']} = "
+                      f"{lo['coll_per_s'] / hi['coll_per_s']:.2f} (target <= 1.3)")
+    ref = [r for r in rows if r["dim"] == 2 and r["phi"] == 0.3 and 9000 < r["N"] < 11000]
+    if ref:
+        best = max(ref, key=lambda r: r["coll_per_s"])
+        print(f"2D fraction 0.3 N=10^4: best {best['coll_per_s']:.3g} collisions/s per core at dt = "
+              f"{best['dt_mft']} mean free times (target >= 1e6)")
+    print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()
