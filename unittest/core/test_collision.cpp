@@ -80,6 +80,12 @@ constexpr int NRANDOM = 40000;    // per law and dimension: 3 laws x 2 dims x 40
 
 class RandomCollisions : public ::testing::TestWithParam<std::tuple<LawKind, bool>> {};
 
+std::string law_dim_name(const ::testing::TestParamInfo<std::tuple<LawKind, bool>> &info)
+{
+  static const char *law[] = {"rough", "walton", "jz"};
+  return std::string(law[int(std::get<0>(info.param))]) + (std::get<1>(info.param) ? "_2d" : "_3d");
+}
+
 TEST_P(RandomCollisions, ConservationRestitutionEnergy)
 {
   const LawKind kind = std::get<0>(GetParam());
@@ -158,7 +164,8 @@ TEST_P(RandomCollisions, ConservationRestitutionEnergy)
 INSTANTIATE_TEST_SUITE_P(Laws, RandomCollisions,
                          ::testing::Combine(::testing::Values(LawKind::ROUGH, LawKind::WALTON,
                                                               LawKind::JZ),
-                                            ::testing::Bool()));
+                                            ::testing::Bool()),
+                         law_dim_name);
 
 void expect_same(const Collision &a, const Collision &b, double tol)
 {

@@ -69,6 +69,22 @@ struct Case {
 
 class Trajectory : public ::testing::TestWithParam<Case> {};
 
+std::string case_name(const ::testing::TestParamInfo<Case> &info)
+{
+  static const char *law[] = {"rough", "walton", "jz"};
+  auto num = [](double x) {
+    std::string s = std::to_string(x);
+    s.erase(s.find_last_not_of('0') + 1);
+    if (s.back() == '.') s.pop_back();
+    for (auto &ch : s)
+      if (ch == '.') ch = 'p';
+    return s;
+  };
+  const Case &c = info.param;
+  return std::string(law[c.law]) + "_" + std::to_string(c.dim) + "d_n" + std::to_string(c.n) +
+      "_phi" + num(c.phi) + "_dt" + num(c.dt_mft) + "mft";
+}
+
 TEST_P(Trajectory, EqualsBruteForceReference)
 {
   const Case c = GetParam();
@@ -99,7 +115,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{0, 2, 200, 0.4, 2.0, 4}, Case{1, 2, 200, 0.05, 0.5, 2},
                       Case{2, 2, 200, 0.25, 10.0, 4}, Case{1, 3, 200, 0.3, 1.0, 3},
                       Case{2, 3, 200, 0.1, 10.0, 3}, Case{0, 3, 200, 0.2, 0.1, 3},
-                      Case{1, 2, 500, 0.3, 3.0, 3}, Case{0, 3, 500, 0.25, 10.0, 2}));
+                      Case{1, 2, 500, 0.3, 3.0, 3}, Case{0, 3, 500, 0.25, 10.0, 2}),
+    case_name);
 
 TEST(EventDriven, GravityEqualsReference)
 {

@@ -107,6 +107,14 @@ struct TrajCase {
 
 class FixTrajectory : public ::testing::TestWithParam<TrajCase> {};
 
+std::string traj_name(const ::testing::TestParamInfo<TrajCase> &info)
+{
+  std::string law = std::string(info.param.pair).substr(11);    // after "hardsphere/"
+  law = law.substr(0, law.find(' '));
+  return law + "_" + std::to_string(info.param.dim) + "d_" + std::to_string(info.param.steps) +
+      "steps";
+}
+
 TEST_P(FixTrajectory, EqualsBruteForceReference)
 {
   const TrajCase c = GetParam();
@@ -143,7 +151,8 @@ INSTANTIATE_TEST_SUITE_P(
         TrajCase{3, "hardsphere/rough", "pair_coeff * * 0.8 -0.2", 0.3, 10, "tc 0.01"},
         TrajCase{3, "hardsphere/walton inertia 0.35", "pair_coeff * * 0.9 0.2 0.5", 0.02, 120,
                  "gravity 0.0 0.0 -0.5"},
-        TrajCase{3, "hardsphere/jz", "pair_coeff * * 0.1 0.2 0.5 0.4", 4.0, 1, ""}));
+        TrajCase{3, "hardsphere/jz", "pair_coeff * * 0.1 0.2 0.5 0.4", 4.0, 1, ""}),
+    traj_name);
 
 TEST(FixHardsphereED, RestartContinuesTheTrajectory)
 {
