@@ -258,7 +258,7 @@ void FixHardsphereED::initial_integrate(int)
   bool reuse = queue_valid && (int) written.size() == ntotal * 9;
   for (int s = 0; reuse && s < ntotal; s++) {
     const double *b = &recvbuf[(size_t) order[s].second * NPACK];
-    const granfric::EDParticle &p = ed.particles[s];
+    const granfric::EDParticle &p = ed.particle(s);
     const double *w = &written[(size_t) s * 9];
     reuse = order[s].first == prev_tags[s] && b[10] == p.a && b[11] == p.m &&
         (int) b[12] == p.type && memcmp(b + 4, w + 3, 6 * sizeof(double)) == 0;
@@ -281,12 +281,11 @@ void FixHardsphereED::initial_integrate(int)
   } else {
     configure_core();
     const double q = pair->shape_factor();
-    ed.particles.resize(ntotal);
+    ed.resize(ntotal);
     prev_tags.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
       const double *b = &recvbuf[(size_t) order[s].second * NPACK];
-      granfric::EDParticle &p = ed.particles[s];
-      p = granfric::EDParticle();
+      granfric::EDParticle &p = ed.particle(s);
       p.x = granfric::Vec3(b[1], b[2], b[3]);
       p.v = granfric::Vec3(b[4], b[5], b[6]);
       p.w = granfric::Vec3(b[7], b[8], b[9]);
@@ -324,7 +323,7 @@ void FixHardsphereED::initial_integrate(int)
   written.resize((size_t) ntotal * 9);
   jumped.assign((size_t) ntotal * 3, 0);
   for (int s = 0; s < ntotal; s++) {
-    const granfric::EDParticle &p = ed.particles[s];
+    const granfric::EDParticle &p = ed.particle(s);
     double *w = &written[(size_t) s * 9];
     int *off = &offset[(size_t) s * 3];
     ed.position(s, dt).to(w);
@@ -346,7 +345,7 @@ void FixHardsphereED::initial_integrate(int)
   imageint *image = atom->image;
   for (int i = 0; i < nlocal; i++) {
     const int s = mine[i];
-    const granfric::EDParticle &p = ed.particles[s];
+    const granfric::EDParticle &p = ed.particle(s);
     const double *w = &written[(size_t) s * 9];
     const int *dimg = &jumped[(size_t) s * 3];
     if (dimg[0] || dimg[1] || dimg[2]) {
@@ -387,7 +386,7 @@ double FixHardsphereED::compute_vector(int n)
 double FixHardsphereED::memory_usage()
 {
   return (double) atom->nmax * sizeof(double) +
-      (double) ed.particles.capacity() * sizeof(granfric::EDParticle) +
+      (double) ed.size() * (sizeof(granfric::EDParticle) + 2 * sizeof(int)) +
       (double) (sendbuf.capacity() + recvbuf.capacity()) * sizeof(double) +
       (double) order.capacity() * sizeof(std::pair<double, int>);
 }

@@ -87,10 +87,10 @@ struct CoreRun {
     o.tc = ref.tc;
     o.max_collisions = cap;
     ed.configure(o, ref.ntypes, ref.laws);
-    ed.particles.resize(ref.p.size());
+    ed.resize((int) ref.p.size());
     for (size_t i = 0; i < ref.p.size(); i++) {
       const RefParticle &r = ref.p[i];
-      EDParticle &p = ed.particles[i];
+      EDParticle &p = ed.particle((int) i);
       p.x = r.x;
       p.v = r.v;
       p.w = r.w;
@@ -105,7 +105,7 @@ struct CoreRun {
   void window(double dt)
   {
     total.add(ed.run(dt));
-    for (auto &p : ed.particles) p.t_last -= dt;    // window times restart at 0
+    for (int i = 0; i < ed.size(); i++) ed.particle(i).t_last -= dt;    // window times restart at 0
     time += dt;
   }
 

@@ -52,7 +52,7 @@ void expect_same_state(const Reference &ref, const CoreRun &run, double tol)
   double dx = 0, dv = 0, dw = 0;
   for (size_t i = 0; i < ref.p.size(); i++) {
     const auto &a = ref.p[i];
-    const auto &b = run.ed.particles[i];
+    const auto &b = run.ed.particle((int) i);
     dx = std::max(dx, norm(a.x - b.x));
     dv = std::max(dv, norm(a.v - b.v) / vrms);
     dw = std::max(dw, a.a * norm(a.w - b.w) / vrms);
@@ -137,6 +137,38 @@ TEST(EventDriven, GravityEqualsReference)
   }
 }
 
+TEST(EventDriven, QueueKeptAcrossWindowsEqualsReference)
+{
+  // start / advance_to / rebase, the way fix hardsphere/ed runs (no re-prediction between
+  // windows), against the brute-force reference
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = 150;
+    s.dim = dim;
+    s.phi = 0.25;
+    s.seed = 91 + dim;
+    Reference ref = make_system(s, LawParams::walton(0.85, 0.3, 0.5));
+    ref.gravity = dim == 2 ? Vec3(0.2, -0.7, 0.0) : Vec3(0.1, -0.3, -0.6);
+    ref.tc = 0.005;
+    const double mft = mean_free_time(ref);
+    CoreRun run(ref);
+    run.ed.start();
+    const double dt = 0.37 * mft;
+    const int nwin = 12;
+    for (int w = 0; w < nwin; w++) {
+      run.total.add(run.ed.advance_to(dt));
+      run.ed.rebase(dt);
+    }
+    ref.run_until(nwin * dt);
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    for (size_t i = 0; i < ref.p.size(); i++) {
+      EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+      EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+      EXPECT_LT(ref.p[i].a * norm(run.ed.particle((int) i).w - ref.p[i].w), 1e-9);
+    }
+  }
+}
+
 TEST(EventDriven, ElasticSmoothGasConservesEnergy)
 {
   SystemSpec s;
@@ -145,15 +177,18 @@ TEST(EventDriven, ElasticSmoothGasConservesEnergy)
   s.phi = 0.3;
   s.polydisperse = true;
   Reference ref = make_system(s, LawParams::rough(1.0, -1.0));
-  auto energy = [](const std::vector<EDParticle> &ps) {
+  auto energy = [](const EventDriven &ed) {
     double e = 0;
-    for (const auto &p : ps) e += 0.5 * p.m * norm2(p.v) + 0.5 * p.q * p.m * p.a * p.a * norm2(p.w);
+    for (int i = 0; i < ed.size(); i++) {
+      const EDParticle &p = ed.particle(i);
+      e += 0.5 * p.m * norm2(p.v) + 0.5 * p.q * p.m * p.a * p.a * norm2(p.w);
+    }
     return e;
   };
   CoreRun run(ref);
-  const double e0 = energy(run.ed.particles);
+  const double e0 = energy(run.ed);
   while (run.total.collisions < 1000000) run.window(5.0);
-  EXPECT_NEAR(energy(run.ed.particles), e0, 1e-10 * e0);
+  EXPECT_NEAR(energy(run.ed), e0, 1e-10 * e0);
   EXPECT_EQ(run.total.dE, 0.0);
 }
 
@@ -172,20 +207,22 @@ TEST(EventDriven, MomentumConservedNoOverlapNoLoss)
       CoreRun run(ref);
       auto momentum = [&]() {
         Vec3 P;
-        for (const auto &p : run.ed.particles) P += p.m * p.v;
+        for (int i = 0; i < run.ed.size(); i++) P += run.ed.particle(i).m * run.ed.particle(i).v;
         return P;
       };
       const Vec3 P0 = momentum();
       for (int w = 0; w < 20; w++) {
         run.window(0.2);
         // no overlap (minimum image, all pairs) and no particle lost (all finite)
-        const auto &ps = run.ed.particles;
+        const EventDriven &ed = run.ed;
         double worst = 0;
-        for (size_t i = 0; i < ps.size(); i++) {
-          ASSERT_TRUE(std::isfinite(ps[i].x.x + ps[i].x.y + ps[i].x.z));
-          for (size_t j = i + 1; j < ps.size(); j++) {
-            const double d = norm(ref.min_image(ps[i].x - ps[j].x));
-            worst = std::max(worst, (ps[i].a + ps[j].a - d) / (ps[i].a + ps[j].a));
+        for (int i = 0; i < ed.size(); i++) {
+          const EDParticle &pi = ed.particle(i);
+          ASSERT_TRUE(std::isfinite(pi.x.x + pi.x.y + pi.x.z));
+          for (int j = i + 1; j < ed.size(); j++) {
+            const EDParticle &pj = ed.particle(j);
+            const double d = norm(ref.min_image(pi.x - pj.x));
+            worst = std::max(worst, (pi.a + pj.a - d) / (pi.a + pj.a));
           }
         }
         EXPECT_LT(worst, 1e-12) << "overlap";
@@ -242,7 +279,7 @@ TEST(EventDriven, TCModelPreventsCollapse)
   ref.tc = 1e-4;
   CoreRun run(ref, 100000);
   double e0 = 0;
-  for (const auto &p : run.ed.particles) e0 += 0.5 * p.m * norm2(p.v);
+  for (int i = 0; i < run.ed.size(); i++) e0 += 0.5 * run.ed.particle(i).m * norm2(run.ed.particle(i).v);
   EXPECT_NO_THROW(for (int w = 0; w < 100; w++) run.window(1.0));
   EXPECT_GT(run.total.tc_elastic, 0);
   EXPECT_LT(-run.total.dE, e0 * 1.5);

@@ -26,6 +26,7 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   if ((int) table.size() != (nt + 1) * (nt + 1))
     throw std::invalid_argument("law table must have (ntypes+1)^2 entries");
   opt = o;
+  has_gravity = norm2(o.gravity) != 0.0;
   ntypes = nt;
   laws = table;
   L = Vec3(o.hi[0] - o.lo[0], o.hi[1] - o.lo[1], o.hi[2] - o.lo[2]);
@@ -36,22 +37,23 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
       throw std::invalid_argument("non-periodic boundaries need walls (not available yet)");
 }
 
-Vec3 EventDriven::position(int i, double t) const
+Vec3 EventDriven::pos(int i, double t) const
 {
-  const EDParticle &p = particles[i];
+  const EDParticle &p = P[i];
   const double dt = t - p.t;
+  if (!has_gravity) return p.x + dt * p.v;
   return p.x + dt * p.v + (0.5 * dt * dt) * opt.gravity;
 }
 
-Vec3 EventDriven::velocity(int i, double t) const
+Vec3 EventDriven::vel(int i, double t) const
 {
-  const EDParticle &p = particles[i];
+  const EDParticle &p = P[i];
   return p.v + (t - p.t) * opt.gravity;
 }
 
 void EventDriven::advance(int i, double t)
 {
-  EDParticle &p = particles[i];
+  EDParticle &p = P[i];
   if (p.t == t) return;
   const double dt = t - p.t;
   p.x += dt * p.v + (0.5 * dt * dt) * opt.gravity;
@@ -59,12 +61,51 @@ void EventDriven::advance(int i, double t)
   p.t = t;
 }
 
+void EventDriven::resize(int n)
+{
+  P.assign(n, EDParticle());
+  ext.resize(n);
+  loc.resize(n);
+  for (int i = 0; i < n; i++) ext[i] = loc[i] = i;
+}
+
+// Renumber the particles in cell order, so that neighbours sit close in memory (the cost of a
+// collision then stays flat with N). Partner references, cell lists and the queue follow; the
+// external numbering (ext / loc) does not change. Deterministic: a stable sort by cell.
+void EventDriven::reorder()
+{
+  const int n = (int) P.size();
+  const int ncell = (int) head.size();
+  std::vector<int> count(ncell + 1, 0), order(n), newloc(n);
+  for (int i = 0; i < n; i++) count[P[i].cell + 1]++;
+  for (int c = 0; c < ncell; c++) count[c + 1] += count[c];
+  for (int i = 0; i < n; i++) order[count[P[i].cell]++] = i;
+  for (int k = 0; k < n; k++) newloc[order[k]] = k;
+  std::vector<EDParticle> Q(n);
+  std::vector<int> newext(n);
+  for (int k = 0; k < n; k++) {
+    Q[k] = P[order[k]];
+    if (Q[k].cpartner >= 0) Q[k].cpartner = newloc[Q[k].cpartner];
+    if (Q[k].last_partner >= 0) Q[k].last_partner = newloc[Q[k].last_partner];
+    newext[k] = ext[order[k]];
+  }
+  P.swap(Q);
+  ext.swap(newext);
+  for (int k = 0; k < n; k++) loc[ext[k]] = k;
+  std::fill(head.begin(), head.end(), -1);
+  for (int i = n - 1; i >= 0; i--) cell_insert(i);
+  std::vector<double> times(n);
+  for (int i = 0; i < n; i++) times[i] = P[i].et;
+  queue.build(times);
+  crossings_since_reorder = 0;
+}
+
 // ---------------------------------------------------------------- cells
 
 void EventDriven::setup_cells()
 {
   double amax = 0.0;
-  for (const auto &p : particles) amax = std::max(amax, p.a);
+  for (const auto &p : P) amax = std::max(amax, p.a);
   const double sigma = 2.0 * amax * (1.0 + 1e-10);
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -81,7 +122,7 @@ void EventDriven::setup_cells()
     cw[d] = L[d] / nc[d];
   }
   // bound the number of cells by the number of particles (beyond that cells only cost memory)
-  const long maxcells = std::max<long>(27, 4L * (long) particles.size());
+  const long maxcells = std::max<long>(27, 4L * (long) P.size());
   while ((long) nc[0] * nc[1] * nc[2] > maxcells) {
     int d = 0;
     for (int k = 1; k < opt.dim; k++)
@@ -90,10 +131,10 @@ void EventDriven::setup_cells()
     cw[d] = L[d] / nc[d];
   }
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
-  next.assign(particles.size(), -1);
-  prev.assign(particles.size(), -1);
-  for (size_t i = 0; i < particles.size(); i++) {
-    EDParticle &p = particles[i];
+  next.assign(P.size(), -1);
+  prev.assign(P.size(), -1);
+  for (size_t i = 0; i < P.size(); i++) {
+    EDParticle &p = P[i];
     for (int d = 0; d < 3; d++) {
       if (d >= opt.dim) {
         p.c[d] = 0;
@@ -111,7 +152,7 @@ void EventDriven::setup_cells()
 
 void EventDriven::cell_insert(int i)
 {
-  EDParticle &p = particles[i];
+  EDParticle &p = P[i];
   p.cell = (p.c[2] * nc[1] + p.c[1]) * nc[0] + p.c[0];
   const int h = head[p.cell];
   next[i] = h;
@@ -122,7 +163,7 @@ void EventDriven::cell_insert(int i)
 
 void EventDriven::cell_remove(int i)
 {
-  const int c = particles[i].cell;
+  const int c = P[i].cell;
   if (prev[i] >= 0)
     next[prev[i]] = next[i];
   else
@@ -132,48 +173,54 @@ void EventDriven::cell_remove(int i)
 
 // ---------------------------------------------------------------- prediction
 
-void EventDriven::predict(int i)
+void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  EDParticle &p = particles[i];
-  p.et = NEVER;
-  p.ekind = NONE;
-
-  // next cell crossing
-  const Vec3 xi = position(i, now), vi = velocity(i, now);
+  EDParticle &p = P[i];
+  p.xt = NEVER;
   for (int d = 0; d < opt.dim; d++) {
     const double blo = opt.lo[d] + ((double) p.c[d] + (double) p.img[d] * nc[d]) * cw[d];
     const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) p.img[d] * nc[d]) * cw[d];
-    const double tup = crossing_time(xi[d], vi[d], opt.gravity[d], bhi, +1);
-    const double tdn = crossing_time(xi[d], vi[d], opt.gravity[d], blo, -1);
-    if (now + tup < p.et) {
-      p.et = now + tup;
-      p.ekind = CROSSING;
-      p.epartner = d;
-      p.ecount = 1;
+    double tup, tdn;
+    if (opt.gravity[d] == 0.0) {
+      // straight flight: only the boundary ahead can be reached
+      tup = vi[d] > 0.0 ? now + std::max(0.0, (bhi - xi[d]) / vi[d]) : NEVER;
+      tdn = vi[d] < 0.0 ? now + std::max(0.0, (blo - xi[d]) / vi[d]) : NEVER;
+    } else {
+      tup = now + crossing_time(xi[d], vi[d], opt.gravity[d], bhi, +1);
+      tdn = now + crossing_time(xi[d], vi[d], opt.gravity[d], blo, -1);
     }
-    if (now + tdn < p.et) {
-      p.et = now + tdn;
-      p.ekind = CROSSING;
-      p.epartner = d;
-      p.ecount = 0;
+    if (tup < p.xt) {
+      p.xt = tup;
+      p.xdim = d;
+      p.xdir = 1;
+    }
+    if (tdn < p.xt) {
+      p.xt = tdn;
+      p.xdim = d;
+      p.xdir = -1;
     }
   }
+}
 
-  // collisions with particles in the neighbouring cells (periodic images by offsets)
-  const int zr = opt.dim == 3 ? 1 : 0;
-  for (int dz = -zr; dz <= zr; dz++) {
+// collision candidates of i among the particles of the cells at offsets dlo..dhi (inclusive)
+// around its cell; periodic images by integer offsets
+void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dhi[3])
+{
+  EDParticle &p = P[i];
+  const bool gravity = has_gravity;
+  for (int dz = dlo[2]; dz <= dhi[2]; dz++) {
     int uz = p.c[2] + dz, kz = 0;
     if (uz < 0) { uz += nc[2]; kz = -1; } else if (uz >= nc[2]) { uz -= nc[2]; kz = 1; }
-    for (int dy = -1; dy <= 1; dy++) {
+    for (int dy = dlo[1]; dy <= dhi[1]; dy++) {
       int uy = p.c[1] + dy, ky = 0;
       if (uy < 0) { uy += nc[1]; ky = -1; } else if (uy >= nc[1]) { uy -= nc[1]; ky = 1; }
-      for (int dx = -1; dx <= 1; dx++) {
+      for (int dx = dlo[0]; dx <= dhi[0]; dx++) {
         int ux = p.c[0] + dx, kx = 0;
         if (ux < 0) { ux += nc[0]; kx = -1; } else if (ux >= nc[0]) { ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = next[j]) {
           if (j == i) continue;
-          const EDParticle &q = particles[j];
+          const EDParticle &q = P[j];
           const int off[3] = {p.img[0] + kx - q.img[0], p.img[1] + ky - q.img[1],
                               p.img[2] + kz - q.img[2]};
           // two particles whose last collisions were with each other (same periodic image)
@@ -183,15 +230,17 @@ void EventDriven::predict(int i)
             continue;
           const Vec3 shift(off[0] * L.x, off[1] * L.y, off[2] * L.z);
           const double dtj = now - q.t;
-          const Vec3 xj = q.x + dtj * q.v + (0.5 * dtj * dtj) * opt.gravity + shift;
-          const Vec3 vj = q.v + dtj * opt.gravity;
-          const double tau = pair_contact_time(xi - xj, vi - vj, p.a + q.a);
-          if (now + tau < p.et) {
-            p.et = now + tau;
-            p.ekind = COLLISION;
-            p.epartner = j;
-            p.ecount = q.ncoll;
-            for (int d = 0; d < 3; d++) p.eoff[d] = off[d];
+          Vec3 xj = q.x + dtj * q.v + shift, vj = q.v;
+          if (gravity) {
+            xj += (0.5 * dtj * dtj) * opt.gravity;
+            vj += dtj * opt.gravity;
+          }
+          const double t = now + pair_contact_time(xi - xj, vi - vj, p.a + q.a);
+          if (t < p.ct) {
+            p.ct = t;
+            p.cpartner = j;
+            p.ccount = q.ncoll;
+            for (int d = 0; d < 3; d++) p.coff[d] = off[d];
           }
         }
       }
@@ -199,17 +248,42 @@ void EventDriven::predict(int i)
   }
 }
 
+void EventDriven::schedule(int i)
+{
+  EDParticle &p = P[i];
+  if (p.ct <= p.xt) {
+    p.et = p.ct;
+    p.ekind = p.ct < NEVER ? COLLISION : NONE;
+  } else {
+    p.et = p.xt;
+    p.ekind = CROSSING;
+  }
+}
+
+void EventDriven::predict(int i)
+{
+  EDParticle &p = P[i];
+  const Vec3 xi = pos(i, now), vi = vel(i, now);
+  predict_crossing(i, xi, vi);
+  p.ct = NEVER;
+  p.cpartner = -1;
+  const int zr = opt.dim == 3 ? 1 : 0;
+  int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
+  scan(i, xi, vi, dlo, dhi);
+  schedule(i);
+}
+
 // ---------------------------------------------------------------- events
 
 void EventDriven::collide_pair(int i)
 {
-  EDParticle &p = particles[i];
-  const int j = p.epartner;
-  EDParticle &q = particles[j];
-  const double t = p.et;
+  EDParticle &p = P[i];
+  const int j = p.cpartner;
+  EDParticle &q = P[j];
+  const double t = p.ct;
   advance(i, t);
   advance(j, t);
-  const Vec3 r = p.x - q.x - Vec3(p.eoff[0] * L.x, p.eoff[1] * L.y, p.eoff[2] * L.z);
+  const Vec3 r = p.x - q.x - Vec3(p.coff[0] * L.x, p.coff[1] * L.y, p.coff[2] * L.z);
   const Vec3 n = (1.0 / norm(r)) * r;
 
   LawParams law = laws[p.type * (ntypes + 1) + q.type];
@@ -231,8 +305,8 @@ void EventDriven::collide_pair(int i)
   p.last_partner = j;
   q.last_partner = i;
   for (int d = 0; d < 3; d++) {
-    p.last_off[d] = p.eoff[d];
-    q.last_off[d] = -p.eoff[d];
+    p.last_off[d] = p.coff[d];
+    q.last_off[d] = -p.coff[d];
   }
   stats.collisions++;
   stats.dE += c.dE;
@@ -247,45 +321,61 @@ void EventDriven::collide_pair(int i)
   stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, std::max(ni, nj));
   if (ni > opt.max_collisions || nj > opt.max_collisions) {
     std::ostringstream s;
-    s << "particles " << i << " and " << j << " collided " << std::max(ni, nj)
+    s << "particles " << ext[i] << " and " << ext[j] << " collided " << std::max(ni, nj)
       << " times within one window (cap " << opt.max_collisions
       << "): inelastic collapse; use the TC model (tc) or a larger cap";
-    throw EventCapError(s.str(), ni >= nj ? i : j, ni >= nj ? j : i, t, std::max(ni, nj));
+    throw EventCapError(s.str(), ni >= nj ? ext[i] : ext[j], ni >= nj ? ext[j] : ext[i], t,
+                        std::max(ni, nj));
   }
   predict(i);
-  heap_update(i);
+  reschedule(i);
   predict(j);
-  heap_update(j);
+  reschedule(j);
 }
 
 void EventDriven::cross(int i)
 {
-  EDParticle &p = particles[i];
-  const int d = p.epartner;
-  advance(i, p.et);
+  EDParticle &p = P[i];
+  const int d = p.xdim, dir = p.xdir;
+  advance(i, p.xt);
   cell_remove(i);
-  if (p.ecount) {
-    if (++p.c[d] == nc[d]) {
-      p.c[d] = 0;
-      p.img[d]++;
-    }
-  } else {
-    if (--p.c[d] < 0) {
-      p.c[d] = nc[d] - 1;
-      p.img[d]--;
-    }
+  p.c[d] += dir;
+  if (p.c[d] == nc[d]) {
+    p.c[d] = 0;
+    p.img[d]++;
+  } else if (p.c[d] < 0) {
+    p.c[d] = nc[d] - 1;
+    p.img[d]--;
   }
   cell_insert(i);
   stats.crossings++;
-  predict(i);
-  heap_update(i);
+  crossings_since_reorder++;
+  const Vec3 xi = p.x, vi = p.v;    // advanced to now above
+  predict_crossing(i, xi, vi);
+  if (p.ct < NEVER && P[p.cpartner].ncoll != p.ccount) {
+    // the stored collision candidate went stale: look at every neighbouring cell
+    p.ct = NEVER;
+    p.cpartner = -1;
+    const int zr = opt.dim == 3 ? 1 : 0;
+    int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
+    scan(i, xi, vi, dlo, dhi);
+  } else {
+    // trajectory unchanged: only the layer of cells that just became adjacent is new
+    const int zr = opt.dim == 3 ? 1 : 0;
+    int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
+    dlo[d] = dhi[d] = dir;
+    if (nc[d] < 3) dlo[d] = -1, dhi[d] = 1;    // with fewer than 3 cells every cell is new
+    scan(i, xi, vi, dlo, dhi);
+  }
+  schedule(i);
+  reschedule(i);
 }
 
 void EventDriven::start()
 {
   now = 0.0;
-  const int n = (int) particles.size();
-  for (auto &p : particles) {
+  const int n = (int) P.size();
+  for (auto &p : P) {
     p.t = 0.0;
     p.ncoll = 0;
     p.last_partner = -1;
@@ -296,31 +386,26 @@ void EventDriven::start()
     }
   }
   setup_cells();
-  heap.resize(n);
-  hpos.resize(n);
-  for (int i = 0; i < n; i++) {
-    predict(i);
-    heap[i] = i;
-    hpos[i] = i;
-  }
-  for (int k = n / 2 - 1; k >= 0; k--) heap_down(k);
+  for (int i = 0; i < n; i++) predict(i);
+  reorder();    // also builds the queue
 }
 
 EDStats EventDriven::advance_to(double t_end)
 {
   stats = EDStats();
   stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
-  for (auto &p : particles) p.ncollisions = 0;
-  const int n = (int) particles.size();
+  for (auto &p : P) p.ncollisions = 0;
+  const int n = (int) P.size();
+  if (crossings_since_reorder > 4L * n) reorder();
   while (n > 0) {
-    const int i = heap[0];
-    EDParticle &p = particles[i];
+    const int i = queue.top();
+    EDParticle &p = P[i];
     if (!(p.et < t_end)) break;
     now = p.et;
     if (p.ekind == COLLISION) {
-      if (particles[p.epartner].ncoll != p.ecount) {
+      if (P[p.cpartner].ncoll != p.ccount) {
         predict(i);    // the partner changed course: stale prediction
-        heap_update(i);
+        reschedule(i);
       } else {
         collide_pair(i);
       }
@@ -337,11 +422,14 @@ EDStats EventDriven::advance_to(double t_end)
 void EventDriven::rebase(double dt)
 {
   // the same shift for every time keeps the heap ordered (rounding is monotone)
-  for (auto &p : particles) {
+  for (auto &p : P) {
     p.t -= dt;
     p.et -= dt;
+    p.ct -= dt;
+    p.xt -= dt;
     p.t_last -= dt;
   }
+  queue.shift(dt);
   now -= dt;
 }
 
@@ -349,54 +437,8 @@ EDStats EventDriven::run(double t_end)
 {
   start();
   const EDStats s = advance_to(t_end);
-  for (int i = 0; i < (int) particles.size(); i++) advance(i, t_end);
+  for (int i = 0; i < (int) P.size(); i++) advance(i, t_end);
   return s;
-}
-
-// ---------------------------------------------------------------- heap
-
-bool EventDriven::before(int i, int j) const
-{
-  const double a = particles[i].et, b = particles[j].et;
-  return a < b || (a == b && i < j);
-}
-
-void EventDriven::heap_up(int k)
-{
-  const int i = heap[k];
-  while (k > 0) {
-    const int parent = (k - 1) / 2;
-    if (!before(i, heap[parent])) break;
-    heap[k] = heap[parent];
-    hpos[heap[k]] = k;
-    k = parent;
-  }
-  heap[k] = i;
-  hpos[i] = k;
-}
-
-void EventDriven::heap_down(int k)
-{
-  const int n = (int) heap.size();
-  const int i = heap[k];
-  while (true) {
-    int child = 2 * k + 1;
-    if (child >= n) break;
-    if (child + 1 < n && before(heap[child + 1], heap[child])) child++;
-    if (!before(heap[child], i)) break;
-    heap[k] = heap[child];
-    hpos[heap[k]] = k;
-    k = child;
-  }
-  heap[k] = i;
-  hpos[i] = k;
-}
-
-void EventDriven::heap_update(int i)
-{
-  const int k = hpos[i];
-  heap_up(k);
-  heap_down(hpos[i]);
 }
 
 }    // namespace granfric

@@ -5,13 +5,14 @@
 // exact time order; then every particle is advanced to t_end. Candidate partners come from a
 // cell grid (cell width >= largest contact distance) kept exact by cell-crossing events, so no
 // pair can be missed whatever the window length. Per-particle local times and lazy updates, one
-// scheduled event per particle, invalidation by collision counters, an indexed binary heap, and
+// scheduled event per particle, invalidation by collision counters, an indexed 4-ary heap, and
 // the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
 // the window (periodic images are tracked by integer offsets, not by moving particles).
 #ifndef GRANFRIC_CORE_EVENT_DRIVEN_H
 #define GRANFRIC_CORE_EVENT_DRIVEN_H
 
 #include "collision.h"
+#include "event_queue.h"
 #include "prediction.h"
 
 #include <cstdint>
@@ -32,18 +33,21 @@ struct EDParticle {
   double t = 0.0;             // local time of x and v
   uint32_t ncoll = 0;         // collisions since start(): invalidates partners' predictions
   int last_partner = -1;      // partner of the last collision
-  int last_off[3] = {0, 0, 0};  // periodic image offset of that partner (see eoff)
+  int last_off[3] = {0, 0, 0};  // periodic image offset of that partner (see coff)
   int cell = -1;              // linear cell index
   int c[3] = {0, 0, 0};       // cell coordinates within the grid
   int img[3] = {0, 0, 0};     // periodic image of the cell
   long ncollisions = 0;       // collisions in this window (event cap)
 
-  // scheduled event
+  // scheduled event: the earlier of the best collision candidate and the next cell crossing
   double et = NEVER;
   int ekind = 0;              // NONE, COLLISION, CROSSING
-  int epartner = -1;          // collision: partner; crossing: dimension
-  uint32_t ecount = 0;        // collision: partner's ncoll at prediction; crossing: direction (0/1)
-  int eoff[3] = {0, 0, 0};    // collision: the partner's unwrapped position is shifted by eoff * L
+  double ct = NEVER;          // collision candidate: time,
+  int cpartner = -1;          //   partner,
+  uint32_t ccount = 0;        //   partner's ncoll at prediction (stale when it changed),
+  int coff[3] = {0, 0, 0};    //   partner's unwrapped position is shifted by coff * L
+  double xt = NEVER;          // next cell crossing: time,
+  int xdim = 0, xdir = 0;     //   dimension and direction (+1 / -1)
 };
 
 struct EDOptions {
@@ -84,7 +88,12 @@ class EventDriven {
   void configure(const EDOptions &opt, int ntypes, const std::vector<LawParams> &laws);
   const EDOptions &options() const { return opt; }
 
-  std::vector<EDParticle> particles;
+  // particles by external index 0..n-1 (the order they were given in); internally they are
+  // kept in cell order for memory locality
+  void resize(int n);
+  int size() const { return (int) P.size(); }
+  EDParticle &particle(int e) { return P[loc[e]]; }
+  const EDParticle &particle(int e) const { return P[loc[e]]; }
 
   // process every event in [0, t_end) and advance all particles to t_end
   EDStats run(double t_end);
@@ -100,33 +109,42 @@ class EventDriven {
   EDStats advance_to(double t_end);
   void rebase(double dt);
 
-  // state of particle i at window time t (lazy update, not stored)
-  Vec3 position(int i, double t) const;
-  Vec3 velocity(int i, double t) const;
+  // state of particle e (external index) at window time t (lazy update, not stored)
+  Vec3 position(int e, double t) const { return pos(loc[e], t); }
+  Vec3 velocity(int e, double t) const { return vel(loc[e], t); }
 
  private:
+  std::vector<EDParticle> P;             // internal order
+  std::vector<int> ext, loc;             // internal -> external index, and back
+  long crossings_since_reorder = 0;
   EDOptions opt;
+  bool has_gravity = false;
   int ntypes = 0;
   std::vector<LawParams> laws;
   Vec3 L;                                // box lengths
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
   std::vector<int> head, next, prev;     // cell lists
-  std::vector<int> heap, hpos;           // indexed binary heap of particles by event time
+  EventQueue queue;                      // particles by event time
   EDStats stats;
   double now = 0.0;
 
   void setup_cells();
+  void reorder();
+  Vec3 pos(int i, double t) const;
+  Vec3 vel(int i, double t) const;
   void cell_insert(int i);
   void cell_remove(int i);
   void advance(int i, double t);
-  void predict(int i);
+  void predict(int i);                   // everything, against all neighbouring cells
+  // next cell crossing only; xi, vi: the particle's state now
+  void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
+  // collision candidates in the block of cells at offsets dlo..dhi
+  void scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dhi[3]);
+  void schedule(int i);                  // et, ekind from the two candidates
   void collide_pair(int i);
   void cross(int i);
-  bool before(int i, int j) const;
-  void heap_up(int k);
-  void heap_down(int k);
-  void heap_update(int i);
+  void reschedule(int i) { queue.update(i, P[i].et); }
 };
 
 }    // namespace granfric
