@@ -206,9 +206,12 @@ void FixHardsphereED::initial_integrate(int)
   const double dt = update->dt;
   const double t0 = window_start_time();
 
-  sendbuf.resize((size_t) nlocal * NPACK);
+  // on one rank the packed atoms are the whole system: pack straight into recvbuf
+  const int nprocs = comm->nprocs, me = comm->me;
+  std::vector<double> &pack = nprocs == 1 ? recvbuf : sendbuf;
+  pack.resize((size_t) nlocal * NPACK);
   for (int i = 0; i < nlocal; i++) {
-    double *b = &sendbuf[(size_t) i * NPACK];
+    double *b = &pack[(size_t) i * NPACK];
     b[0] = (double) tag[i];
     for (int d = 0; d < 3; d++) {
       b[1 + d] = x[i][d];
@@ -220,19 +223,24 @@ void FixHardsphereED::initial_integrate(int)
     b[12] = (double) type[i];
     b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
   }
-  const int nprocs = comm->nprocs, me = comm->me;
   counts.resize(nprocs);
   displs.resize(nprocs);
   int mysize = nlocal * NPACK;
-  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
-  int total = 0;
-  for (int p = 0; p < nprocs; p++) {
-    displs[p] = total;
-    total += counts[p];
+  int total = mysize;
+  if (nprocs == 1) {
+    counts[0] = mysize;
+    displs[0] = 0;
+  } else {
+    MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+    total = 0;
+    for (int p = 0; p < nprocs; p++) {
+      displs[p] = total;
+      total += counts[p];
+    }
+    recvbuf.resize(total);
+    MPI_Allgatherv(sendbuf.data(), mysize, MPI_DOUBLE, recvbuf.data(), counts.data(),
+                   displs.data(), MPI_DOUBLE, world);
   }
-  recvbuf.resize(total);
-  MPI_Allgatherv(sendbuf.data(), mysize, MPI_DOUBLE, recvbuf.data(), counts.data(), displs.data(),
-                 MPI_DOUBLE, world);
   const int ntotal = total / NPACK;
 
   // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
