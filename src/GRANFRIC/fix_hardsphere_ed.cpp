@@ -4,6 +4,8 @@
 
 #include "fix_hardsphere_ed.h"
 
+#include "fix_hardsphere_kick.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -23,8 +25,9 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using granfric::INF;
 
-// per-atom values exchanged to build the window: tag, x, v, omega, radius, rmass, type, tlast
-static constexpr int NPACK = 14;
+// per-atom values exchanged to build the window: tag, x, v, omega, radius, rmass, type, tlast,
+// mask
+static constexpr int NPACK = 15;
 
 /* ---------------------------------------------------------------------- */
 
@@ -120,8 +123,10 @@ void FixHardsphereED::init()
                  "non-periodic boundaries are not available yet)",
                  domain->dimension == 3 ? " and z" : "");
 
+  kicks.clear();
   for (const auto &f : modify->get_fix_list()) {
     if (f == this) continue;
+    if (auto *k = dynamic_cast<FixHardsphereKick *>(f)) kicks.push_back(k);
     if (utils::strmatch(f->style, "^gravity"))
       error->all(FLERR,
                  "Fix {} (gravity) acts together with fix hardsphere/ed {}: use the gravity "
@@ -222,6 +227,7 @@ void FixHardsphereED::initial_integrate(int)
     b[11] = rmass[i];
     b[12] = (double) type[i];
     b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
+    b[14] = (double) atom->mask[i];
   }
   counts.resize(nprocs);
   displs.resize(nprocs);
@@ -309,6 +315,31 @@ void FixHardsphereED::initial_integrate(int)
     totals[QUEUE_REBUILDS] += 1.0;
   }
 
+  // kicks of fix hardsphere/kick at their exact times inside the window
+  if (!kicks.empty()) {
+    cmask.resize(ntotal);
+    for (int s = 0; s < ntotal; s++) cmask[s] = (int) recvbuf[(size_t) order[s].second * NPACK + 14];
+    struct Kick {
+      double t;
+      int fix;
+      long k;
+    };
+    std::vector<Kick> all;
+    for (int f = 0; f < (int) kicks.size(); f++) {
+      std::vector<double> times;
+      std::vector<long> index;
+      kicks[f]->kicks_in(t0, t0 + dt, times, index);
+      for (size_t m = 0; m < times.size(); m++) all.push_back({times[m] - t0, f, index[m]});
+    }
+    std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
+    std::vector<double> times(all.size());
+    for (size_t m = 0; m < all.size(); m++) times[m] = all[m].t;
+    const int dim = domain->dimension;
+    ed.set_global_events(times, [this, all, dim](int g) {
+      kicks[all[g].fix]->apply(ed, prev_tags, cmask, all[g].k, dim);
+    });
+  }
+
   try {
     last = ed.advance_to(dt);
   } catch (granfric::EventCapError &e) {
@@ -382,6 +413,7 @@ void FixHardsphereED::initial_integrate(int)
   totals[MAX_ONE_PARTICLE] = (double) last.max_collisions_one_particle;
   totals[TC_ELASTIC] += (double) last.tc_elastic;
   totals[ENERGY_CREATING] += (double) last.energy_created;
+  totals[INJECTED] += last.injected * force->mvv2e;
 }
 
 double FixHardsphereED::compute_vector(int n)

@@ -8,6 +8,7 @@
 #include "compute_hardsphere_collisions.h"
 #include "compute_hardsphere_temp.h"
 #include "fix_hardsphere_ed.h"
+#include "fix_hardsphere_kick.h"
 #include "pair_hardsphere.h"
 
 using namespace LAMMPS_NS;
@@ -58,6 +59,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   add(reg, lmp, handle, "fix", "hardsphere/ed",
       "GRANFRIC exact event-driven integrator for hard spheres and discs",
       (void *) &style_creator<FixHardsphereED>, false);
+  add(reg, lmp, handle, "fix", "hardsphere/kick",
+      "GRANFRIC homogeneous stochastic driving (Gaussian kicks at exact times)",
+      (void *) &style_creator<FixHardsphereKick>, false);
   add(reg, lmp, handle, "compute", "hardsphere/temp",
       "GRANFRIC translational and rotational temperatures of hard spheres and discs",
       (void *) &style_creator<ComputeHardsphereTemp>, false);

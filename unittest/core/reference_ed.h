@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -39,6 +40,10 @@ struct Reference {
   double time = 0.0;
   long collisions = 0;
   double dE = 0.0;
+  // instant global events (kicks) at absolute times, applied to all particles at once
+  std::vector<double> kick_times;
+  std::function<void(std::vector<RefParticle> &, int)> kick;
+  size_t next_kick = 0;
 
   Vec3 pos(const RefParticle &q, double t) const
   {
@@ -100,6 +105,16 @@ struct Reference {
                 }
               }
         }
+      }
+      if (next_kick < kick_times.size() && kick_times[next_kick] <= time + best &&
+          kick_times[next_kick] < t_end) {
+        time = kick_times[next_kick];
+        for (auto &q : p) {
+          bring(q, time);
+          q.last_partner = -1;
+        }
+        kick(p, (int) next_kick++);
+        continue;
       }
       time += best;
       if (bi < 0) continue;

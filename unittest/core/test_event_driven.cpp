@@ -169,6 +169,74 @@ TEST(EventDriven, QueueKeptAcrossWindowsEqualsReference)
   }
 }
 
+// a deterministic Gaussian-like kick of particle e at kick k (test only)
+Vec3 test_kick(int e, int k, double s)
+{
+  std::mt19937_64 g(1000003ULL * (unsigned) e + 7919ULL * (unsigned) k + 17);
+  std::normal_distribution<double> n(0.0, s);
+  return Vec3(n(g), n(g), n(g));
+}
+
+TEST(EventDriven, GlobalKicksEqualReference)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = 120;
+    s.dim = dim;
+    s.phi = 0.25;
+    s.seed = 57 + dim;
+    Reference ref = make_system(s, LawParams::walton(0.8, 0.3, 0.4));
+    const double mft = mean_free_time(ref);
+    const double period = 0.23 * mft;
+    auto dv = [dim](int e, int k) {
+      Vec3 d = test_kick(e, k, 0.3);
+      if (dim == 2) d.z = 0.0;
+      return d;
+    };
+    for (int k = 1; k * period < 6 * mft; k++) ref.kick_times.push_back(k * period);
+    ref.kick = [&](std::vector<RefParticle> &ps, int k) {
+      for (size_t e = 0; e < ps.size(); e++) ps[e].v += dv((int) e, k);
+    };
+    CoreRun run(ref);
+    run.ed.start();
+    const double dt = 0.61 * mft;
+    double t0 = 0.0, injected = 0.0;
+    const int nwin = (int) std::floor(6 * mft / dt);
+    for (int w = 0; w < nwin; w++) {
+      std::vector<double> times;
+      std::vector<int> index;
+      for (size_t k = 0; k < ref.kick_times.size(); k++)
+        if (ref.kick_times[k] >= t0 && ref.kick_times[k] < t0 + dt) {
+          times.push_back(ref.kick_times[k] - t0);
+          index.push_back((int) k);
+        }
+      EventDriven &ed = run.ed;
+      run.ed.set_global_events(times, [&](int g) {
+        for (int e = 0; e < ed.size(); e++) ed.particle(e).v += dv(e, index[g]);
+      });
+      const EDStats st = run.ed.advance_to(dt);
+      run.total.add(st);
+      injected += st.injected;
+      run.ed.rebase(dt);
+      t0 += dt;
+    }
+    ref.run_until(nwin * dt);
+    EXPECT_GT(run.total.global_events, 10);
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    double e0 = 0, e1 = 0;
+    for (size_t i = 0; i < ref.p.size(); i++) {
+      EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+      EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+      EXPECT_LT(ref.p[i].a * norm(run.ed.particle((int) i).w - ref.p[i].w), 1e-9);
+    }
+    // energy books: injected + collision energy changes = change of kinetic energy
+    Reference start = make_system(s, LawParams::walton(0.8, 0.3, 0.4));
+    for (const auto &p : start.p) e0 += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
+    for (const auto &p : ref.p) e1 += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
+    EXPECT_NEAR(injected + run.total.dE, e1 - e0, 1e-10 * e0);
+  }
+}
+
 TEST(EventDriven, ElasticSmoothGasConservesEnergy)
 {
   SystemSpec s;

@@ -4,6 +4,7 @@
 #include "lammps_fixture.h"
 
 #include "atom.h"
+#include "compute.h"
 #include "domain.h"
 #include "fix.h"
 #include "force.h"
@@ -158,7 +159,8 @@ TEST(FixHardsphereED, RestartContinuesTheTrajectory)
 {
   const std::string setup = gas(2, 150, 22.0, 99) +
       "pair_style hardsphere/walton\npair_coeff * * 0.8 0.3 0.4\n"
-      "fix ed all hardsphere/ed tc 0.05\ntimestep 0.1\nthermo 0\n";
+      "fix ed all hardsphere/ed tc 0.05\nfix k all hardsphere/kick 3.0 0.1 99\n"
+      "timestep 0.1\nthermo 0\n";
   auto a = make_lammps();
   run(a.get(), setup + "run 40 post no");
   Reference ra = reference_of(a.get());
@@ -172,13 +174,15 @@ TEST(FixHardsphereED, RestartContinuesTheTrajectory)
   }
   auto c = make_lammps();
   run(c.get(), "read_restart " + rst + "\ncomm_modify vel yes\nfix ed all hardsphere/ed tc 0.05\n"
-               "timestep 0.1\nthermo 0\nrun 20 post no");
+               "fix k all hardsphere/kick 3.0 0.1 99\ntimestep 0.1\nthermo 0\nrun 20 post no");
   std::remove(rst.c_str());
   // the continuous run keeps its event queue across the step where the other one restarts and
   // predicts afresh: the same trajectory up to rounding
   EXPECT_LT(max_deviation(c.get(), ra), 1e-9) << "restart must continue the same trajectory";
   EXPECT_EQ(c->modify->get_fix_by_id("ed")->compute_vector(1), colla)
       << "collision totals are kept in the restart file";
+  EXPECT_EQ(c->modify->get_fix_by_id("k")->compute_scalar(), 12.0)
+      << "the kick counter is kept in the restart file (kicks at t = 0, 1/3, ..., 11/3)";
 }
 
 // r = 0.5 at area fraction 0.6: inelastic collapse without the TC model
@@ -259,6 +263,54 @@ TEST_F(FixErrors, RefusesOtherPairStyles)
   EXPECT_LMP_ERROR(lmp.get(), "run 0",
                    "requires pair style hardsphere/rough, hardsphere/walton or hardsphere/jz "
                    "\\(found granular\\)");
+}
+
+// homogeneous driving: without dissipation (elastic smooth discs) T_tr grows at the rate
+// f_dr m v_dr^2 (Herbst eqs 7-9), kicks keep the total momentum zero, and the energy books close
+TEST(FixHardsphereKick, HeatingRateMomentumAndEnergyBooks)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n"
+                 "lattice sq 0.0637\nregion box block 0 100 0 100 -0.5 0.5\ncreate_box 1 box\n"
+                 "create_atoms 1 box\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
+                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
+                 "fix ed all hardsphere/ed\nfix k all hardsphere/kick 1.0 0.05 4711\n"
+                 "compute T all hardsphere/temp\nthermo_style custom step c_T[1]\n"
+                 "timestep 0.3\nrun 100 post no");
+  auto *T = lmp->modify->get_compute_by_id("T");
+  T->compute_vector();
+  const double t = 30.0, expected = 1.0 * 1.0 * 0.05 * 0.05 * t * (1.0 - 1.0 / 10000);
+  // 30 kicks (t = 0, 1, ..., 29); the relative noise of the mean of 2N squares is 1 %
+  EXPECT_NEAR(T->vector[0] / expected, 1.0, 0.04);
+  double P[2] = {0, 0};
+  for (int i = 0; i < lmp->atom->nlocal; i++)
+    for (int d = 0; d < 2; d++) P[d] += lmp->atom->rmass[i] * lmp->atom->v[i][d];
+  EXPECT_LT(std::fabs(P[0]) + std::fabs(P[1]), 1e-12);
+  EXPECT_EQ(lmp->modify->get_fix_by_id("k")->compute_scalar(), 30.0);    // next kick index
+
+  // dissipative collisions: injected - dissipated = change of kinetic energy
+  run(lmp.get(), "pair_coeff * * 0.8 0.3\nrun 100 post no");
+  auto *ed = lmp->modify->get_fix_by_id("ed");
+  T->compute_vector();
+  const double E = T->vector[3] + T->vector[4];
+  EXPECT_GT(ed->compute_vector(2), 0.0);
+  EXPECT_NEAR(ed->compute_vector(8) - ed->compute_vector(2), E, 1e-9 * E);
+}
+
+TEST_F(FixErrors, Kick)
+{
+  run(lmp.get(), "fix ed all hardsphere/ed");
+  EXPECT_LMP_ERROR(lmp.get(), "fix k all hardsphere/kick 0 0.1 5", "f_dr = 0 must be > 0");
+  EXPECT_LMP_ERROR(lmp.get(), "fix k all hardsphere/kick 1 -0.1 5", "v_dr = -0.1 must be >= 0");
+  EXPECT_LMP_ERROR(lmp.get(), "fix k all hardsphere/kick 1 0.1 0", "seed = 0 must be > 0");
+  EXPECT_LMP_ERROR(lmp.get(), "fix k all hardsphere/kick 1 0.1", "Illegal fix hardsphere/kick");
+  EXPECT_LMP_ERROR(lmp.get(), "fix k all hardsphere/kick 1 0.1 5 momentum maybe",
+                   "Expected boolean parameter instead of 'maybe'");
+  EXPECT_LMP_ERROR(lmp.get(), "fix k all hardsphere/kick 1 0.1 5 spin -1", "spin = -1 must be >= 0");
+  EXPECT_LMP_ERROR(lmp.get(), "fix k all hardsphere/kick 1 0.1 5 heat 2",
+                   "Unknown fix hardsphere/kick keyword: heat \\(allowed: momentum, spin\\)");
+  run(lmp.get(), "unfix ed\nfix k all hardsphere/kick 1 0.1 5\nfix n all nve/sphere");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "needs fix hardsphere/ed");
 }
 
 TEST_F(FixErrors, Computes)

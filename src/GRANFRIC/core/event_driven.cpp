@@ -16,6 +16,8 @@ void EDStats::add(const EDStats &o)
   crossings += o.crossings;
   max_collisions_one_particle = std::max(max_collisions_one_particle, o.max_collisions_one_particle);
   dE += o.dE;
+  injected += o.injected;
+  global_events += o.global_events;
   if (gamma_hist.size() < o.gamma_hist.size()) gamma_hist.resize(o.gamma_hist.size(), 0);
   for (size_t k = 0; k < o.gamma_hist.size(); k++) gamma_hist[k] += o.gamma_hist[k];
 }
@@ -397,9 +399,14 @@ EDStats EventDriven::advance_to(double t_end)
   for (auto &p : P) p.ncollisions = 0;
   const int n = (int) P.size();
   if (crossings_since_reorder > 4L * n) reorder();
+  size_t g = 0;
   while (n > 0) {
     const int i = queue.top();
     EDParticle &p = P[i];
+    if (g < gtimes.size() && gtimes[g] < t_end && !(p.et < gtimes[g])) {
+      global_event((int) g++);
+      continue;
+    }
     if (!(p.et < t_end)) break;
     now = p.et;
     if (p.ekind == COLLISION) {
@@ -415,8 +422,45 @@ EDStats EventDriven::advance_to(double t_end)
       break;
     }
   }
+  gtimes.clear();
   now = t_end;
   return stats;
+}
+
+void EventDriven::set_global_events(const std::vector<double> &times, std::function<void(int)> apply)
+{
+  gtimes = times;
+  gapply = std::move(apply);
+}
+
+void EventDriven::global_event(int k)
+{
+  now = gtimes[k];
+  const int n = (int) P.size();
+  auto energy = [&]() {
+    double e = 0.0;
+    for (const auto &p : P) e += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
+    return e;
+  };
+  for (int i = 0; i < n; i++) advance(i, now);
+  const double before = energy();
+  gapply(k);
+  stats.injected += energy() - before;
+  stats.global_events++;
+  for (auto &p : P) {
+    p.ncoll++;    // every trajectory changed: all stored predictions are stale
+    p.last_partner = -1;
+    if (opt.dim == 2) {
+      p.v.z = 0.0;
+      p.w.x = p.w.y = 0.0;
+    }
+  }
+  std::vector<double> times(n);
+  for (int i = 0; i < n; i++) {
+    predict(i);
+    times[i] = P[i].et;
+  }
+  queue.build(times);
 }
 
 void EventDriven::rebase(double dt)

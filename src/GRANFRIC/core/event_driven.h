@@ -16,6 +16,7 @@
 #include "prediction.h"
 
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -64,6 +65,8 @@ struct EDStats {
   long collisions = 0, sliding = 0, tc_elastic = 0, energy_created = 0, crossings = 0;
   long max_collisions_one_particle = 0;
   double dE = 0.0;                      // sum of collision energy changes (< 0: dissipated)
+  double injected = 0.0;                // kinetic energy added by instant global events (kicks)
+  long global_events = 0;
   std::vector<long> gamma_hist;         // impact angles, EDOptions::gamma_bins bins
   void add(const EDStats &o);
 };
@@ -109,6 +112,12 @@ class EventDriven {
   EDStats advance_to(double t_end);
   void rebase(double dt);
 
+  // Instant events that change many particles at once (random kicks): at each of the given
+  // window times (ascending, processed before t_end by the next advance_to) every particle is
+  // brought to that time, apply(k) may change velocities and spins through particle(e), the
+  // kinetic energy change is booked as injected, and every prediction is made afresh.
+  void set_global_events(const std::vector<double> &times, std::function<void(int)> apply);
+
   // state of particle e (external index) at window time t (lazy update, not stored)
   Vec3 position(int e, double t) const { return pos(loc[e], t); }
   Vec3 velocity(int e, double t) const { return vel(loc[e], t); }
@@ -117,6 +126,9 @@ class EventDriven {
   std::vector<EDParticle> P;             // internal order
   std::vector<int> ext, loc;             // internal -> external index, and back
   long crossings_since_reorder = 0;
+  std::vector<double> gtimes;            // pending global events
+  std::function<void(int)> gapply;
+  void global_event(int k);
   EDOptions opt;
   bool has_gravity = false;
   int ntypes = 0;

@@ -1,0 +1,163 @@
+/* ----------------------------------------------------------------------
+   GRANFRIC: fix hardsphere/kick (see the header and doc/fix_hardsphere_kick.rst)
+------------------------------------------------------------------------- */
+
+#include "fix_hardsphere_kick.h"
+
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "modify.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+FixHardsphereKick::FixHardsphereKick(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), spin(0.0), momentum(1), next_kick(0), started(false)
+{
+  if (narg < 6) utils::missing_cmd_args(FLERR, "fix hardsphere/kick f_dr v_dr seed", error);
+  fdr = utils::numeric(FLERR, arg[3], false, lmp);
+  vdr = utils::numeric(FLERR, arg[4], false, lmp);
+  seed = utils::bnumeric(FLERR, arg[5], false, lmp);
+  if (!(fdr > 0.0)) error->all(FLERR, "Fix hardsphere/kick f_dr = {} must be > 0", fdr);
+  if (!(vdr >= 0.0)) error->all(FLERR, "Fix hardsphere/kick v_dr = {} must be >= 0", vdr);
+  if (seed <= 0) error->all(FLERR, "Fix hardsphere/kick seed = {} must be > 0", seed);
+  int iarg = 6;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "momentum") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/kick momentum", error);
+      momentum = utils::logical(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "spin") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/kick spin", error);
+      spin = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(spin >= 0.0))
+        error->all(FLERR, "Fix hardsphere/kick spin = {} must be >= 0 (rotational power as a "
+                   "fraction of the translational power)", spin);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "Unknown fix hardsphere/kick keyword: {} (allowed: momentum, spin)",
+                 arg[iarg]);
+    }
+  }
+  scalar_flag = 1;
+  global_freq = 1;
+  extscalar = 0;
+  restart_global = 1;
+}
+
+int FixHardsphereKick::setmask()
+{
+  return 0;    // called by fix hardsphere/ed inside its window
+}
+
+void FixHardsphereKick::init()
+{
+  bool ed = false;
+  for (const auto &f : modify->get_fix_list())
+    if (utils::strmatch(f->style, "^hardsphere/ed")) ed = true;
+  if (!ed)
+    error->all(FLERR, "Fix hardsphere/kick {} needs fix hardsphere/ed, which applies the kicks "
+               "at their times inside each step", id);
+  // the first kick of a new run is the first kick time at or after the current time
+  if (!started) {
+    const double now = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+    next_kick = std::max(next_kick, (long) std::ceil(now * fdr - 1e-9));
+    started = true;
+  }
+}
+
+double FixHardsphereKick::compute_scalar()
+{
+  return (double) next_kick;
+}
+
+void FixHardsphereKick::kicks_in(double t0, double t1, std::vector<double> &times,
+                                 std::vector<long> &index)
+{
+  while (next_kick / fdr < t1) {
+    times.push_back(std::max(next_kick / fdr, t0));
+    index.push_back(next_kick);
+    next_kick++;
+  }
+}
+
+// counter-based random numbers: splitmix64 of (seed, atom ID, kick, number) -> two uniforms ->
+// Box-Muller; reproducible for an atom on any number of ranks
+static inline uint64_t splitmix64(uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+double FixHardsphereKick::gaussian(long seed, long tag, long k, int n)
+{
+  const uint64_t base = splitmix64(splitmix64(splitmix64((uint64_t) seed) ^ (uint64_t) tag) ^
+                                   (uint64_t) k);
+  const uint64_t a = splitmix64(base ^ (uint64_t) (2 * (n / 2) + 1));
+  const uint64_t b = splitmix64(a);
+  const double u1 = ((a >> 11) + 0.5) * 0x1.0p-53;    // (0, 1)
+  const double u2 = (b >> 11) * 0x1.0p-53;            // [0, 1)
+  const double r = std::sqrt(-2.0 * std::log(u1));
+  return (n % 2 == 0) ? r * std::cos(2.0 * M_PI * u2) : r * std::sin(2.0 * M_PI * u2);
+}
+
+void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<double> &tag,
+                              const std::vector<int> &mask, long k, int dim) const
+{
+  using granfric::Vec3;
+  const int n = ed.size();
+  std::vector<Vec3> dv(n);
+  Vec3 P;
+  double M = 0.0;
+  for (int e = 0; e < n; e++) {
+    if (!(mask[e] & groupbit)) continue;
+    const long t = (long) tag[e];
+    dv[e] = vdr * Vec3(gaussian(seed, t, k, 0), gaussian(seed, t, k, 1),
+                       dim == 3 ? gaussian(seed, t, k, 2) : 0.0);
+    const granfric::EDParticle &p = ed.particle(e);
+    P += p.m * dv[e];
+    M += p.m;
+  }
+  const Vec3 dvcm = (momentum && M > 0.0) ? (1.0 / M) * P : Vec3();
+  for (int e = 0; e < n; e++) {
+    if (!(mask[e] & groupbit)) continue;
+    granfric::EDParticle &p = ed.particle(e);
+    p.v += dv[e] - dvcm;
+    if (spin > 0.0) {
+      // rotational power = spin x translational power: d_tr v_dr^2 m / 2 per kick against
+      // d_rot w^2 I / 2 with I = q m a^2
+      const int dtr = dim, drot = dim == 2 ? 1 : 3;
+      const double w = vdr * std::sqrt(spin * dtr / (p.q * p.a * p.a * drot));
+      const long t = (long) tag[e];
+      if (dim == 2)
+        p.w.z += w * gaussian(seed, t, k, 3);
+      else
+        p.w += w * Vec3(gaussian(seed, t, k, 3), gaussian(seed, t, k, 4), gaussian(seed, t, k, 5));
+    }
+  }
+}
+
+void FixHardsphereKick::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    int size = sizeof(double);
+    double v = (double) next_kick;
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&v, sizeof(double), 1, fp);
+  }
+}
+
+void FixHardsphereKick::restart(char *buf)
+{
+  double v;
+  memcpy(&v, buf, sizeof(double));
+  next_kick = (long) v;
+  started = true;
+}

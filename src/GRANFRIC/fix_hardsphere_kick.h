@@ -1,0 +1,47 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   GRANFRIC: fix ID group hardsphere/kick f_dr v_dr seed [momentum yes|no] [spin fraction]
+
+   Homogeneous stochastic driving (Herbst et al. 2005, eqs 7-9): at the times k/f_dr every atom
+   of the group gets an independent Gaussian velocity increment of standard deviation v_dr per
+   translational component. The kicks happen at their exact times inside the event-driven step
+   of fix hardsphere/ed, which calls this fix; the random numbers of an atom depend only on
+   (seed, atom ID, kick index), so a run is the same on any number of MPI ranks.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANFRIC_FIX_HARDSPHERE_KICK_H
+#define LMP_GRANFRIC_FIX_HARDSPHERE_KICK_H
+
+#include "fix.h"
+
+#include "core/event_driven.h"
+
+namespace LAMMPS_NS {
+
+class FixHardsphereKick : public Fix {
+ public:
+  FixHardsphereKick(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  double compute_scalar() override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+  // for fix hardsphere/ed: the kicks k with k/f_dr in [t0, t1) (absolute times), consumed
+  void kicks_in(double t0, double t1, std::vector<double> &times, std::vector<long> &index);
+  // apply kick k to the gathered system: tag[e], mask[e] of core particle e
+  void apply(granfric::EventDriven &ed, const std::vector<double> &tag,
+             const std::vector<int> &mask, long k, int dim) const;
+  // the Gaussian number n (0..5) of an atom at kick k: a pure function of (seed, tag, k, n)
+  static double gaussian(long seed, long tag, long k, int n);
+
+ private:
+  double fdr, vdr, spin;
+  long seed;
+  int momentum;
+  long next_kick;      // index of the next kick (restart)
+  bool started;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
