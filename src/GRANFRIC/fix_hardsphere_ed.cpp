@@ -166,11 +166,6 @@ void FixHardsphereED::request_gamma_bins(int nbins)
   gamma_bins = nbins;
 }
 
-double FixHardsphereED::shape_factor() const
-{
-  return pair ? pair->shape_factor() : 0.4;
-}
-
 void FixHardsphereED::configure_core()
 {
   granfric::EDOptions o;

@@ -55,14 +55,12 @@ class FixHardsphereED : public Fix {
   int maxsize_restart() override;
 
   // for computes and tests
-  const granfric::EDStats &step_stats() const { return last; }
   // everything since the fix was created (not kept in restart files; the output totals are)
   const granfric::EDStats &cumulative() const { return cum; }
   // elapsed simulated time covered by cumulative()
   double cumulative_time() const { return cum_time; }
   // a compute asks for impact-angle histograms with this many bins (one size per fix)
   void request_gamma_bins(int nbins);
-  double shape_factor() const;
 
  protected:
   double gravity[3];
