@@ -14,9 +14,12 @@ cmake --build "$build" --parallel "$(nproc)"
 export GRANFRIC_BUILD=$build
 mkdir -p "$out"
 
-echo "== main job: free cooling of rough discs and spheres (Luding et al. 1998), simulation vs theory"
+echo "== main job (flagship): randomly driven rough spheres with friction (Herbst et al. 2005) vs model E"
+PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.herbst --quick --out "$out/herbst2005"
+echo "== free cooling of rough discs and spheres (Luding et al. 1998), simulation vs theory"
 PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.luding --quick --out "$out/luding1998"
 echo "== collision laws of the three papers through the GRANFRIC core"
 PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.collision_demo --out "$out/collisions" > /dev/null
-echo "== done: $out/luding1998/cooling.png (figure), $out/luding1998/report.md (numbers),"
+echo "== done: $out/herbst2005/driven.png and report.md (flagship),"
+echo "         $out/luding1998/cooling.png and report.md,"
 echo "         $out/collisions/collision_laws.png"
