@@ -1,18 +1,14 @@
 // GRANFRIC core as a C ABI for the Python tools (ctypes): the same collision law the LAMMPS
 // styles use. Vectors are double[3]; see core/collision.h for conventions.
 #include "core/collision.h"
+#include "core/energy_loss.h"
 
 using namespace granfric;
 
 extern "C" {
 
-// law: 0 rough (c = r, beta), 1 walton (c = r, mu, rtmax), 2 jz (c = qn, qt, kappa_s, kappa_d).
-// body = {vx,vy,vz, wx,wy,wz, m, a, q}; m2 = inf makes body 2 a wall.
-// out = {v1[3], w1[3], v2[3], w2[3], dE, gn, gt, cos_gamma, rt, sliding, energy_created} (19 values)
-int granfric_collide(int law, const double *c, const double *body1, const double *body2,
-                     const double *n, double *out)
+static int make_law(int law, const double *c, LawParams &p)
 {
-  LawParams p;
   if (law == 0)
     p = LawParams::rough(c[0], c[1]);
   else if (law == 1)
@@ -21,7 +17,33 @@ int granfric_collide(int law, const double *c, const double *body1, const double
     p = LawParams::jz(c[0], c[1], c[2], c[3]);
   else
     return -1;
-  if (p.check()) return -2;
+  return p.check() ? -2 : 0;
+}
+
+// Monte Carlo <dE> per collision of equal particles over a Maxwellian at T0 (energy_loss.h):
+// out = {mean, standard error, sliding fraction}
+int granfric_mean_energy_loss(int law, const double *c, double q, int dim, double T0, long n,
+                              unsigned long seed, double *out)
+{
+  LawParams p;
+  const int rc = make_law(law, c, p);
+  if (rc) return rc;
+  const EnergyLossResult r = mean_energy_loss(p, q, dim, T0, n, seed);
+  out[0] = r.mean;
+  out[1] = r.stderr_;
+  out[2] = r.sliding;
+  return 0;
+}
+
+// law: 0 rough (c = r, beta), 1 walton (c = r, mu, rtmax), 2 jz (c = qn, qt, kappa_s, kappa_d).
+// body = {vx,vy,vz, wx,wy,wz, m, a, q}; m2 = inf makes body 2 a wall.
+// out = {v1[3], w1[3], v2[3], w2[3], dE, gn, gt, cos_gamma, rt, sliding, energy_created} (19 values)
+int granfric_collide(int law, const double *c, const double *body1, const double *body2,
+                     const double *n, double *out)
+{
+  LawParams p;
+  const int rc = make_law(law, c, p);
+  if (rc) return rc;
   auto body = [](const double *b) {
     Body o;
     o.v = Vec3::from(b);

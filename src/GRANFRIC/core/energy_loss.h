@@ -1,0 +1,27 @@
+// GRANFRIC physics core: Monte Carlo mean energy change per collision over a Maxwellian,
+// through the same collision law the simulations use (Risso et al. 2005, Sec. II; the
+// conventions of physics-notes.md item 9): equal particles, velocities Gaussian at T0 per
+// component, spins Gaussian with I <w^2> = T0 per spin component, collisions weighted by the
+// normal relative speed (only approaching pairs).
+#ifndef GRANFRIC_CORE_ENERGY_LOSS_H
+#define GRANFRIC_CORE_ENERGY_LOSS_H
+
+#include "collision.h"
+
+#include <cstdint>
+
+namespace granfric {
+
+struct EnergyLossResult {
+  double mean = 0.0;       // <dE> per collision (m = 1, T0 as given)
+  double stderr_ = 0.0;    // its standard error (weighted samples)
+  double sliding = 0.0;    // weighted fraction of sliding collisions
+  long samples = 0;        // approaching pairs used
+};
+
+EnergyLossResult mean_energy_loss(const LawParams &law, double q, int dim, double T0, long n,
+                                  uint64_t seed);
+
+}    // namespace granfric
+
+#endif

@@ -1,0 +1,37 @@
+"""Risso's mean energy loss per collision, by Monte Carlo through the C++ law."""
+import math
+
+import pytest
+
+from granfric import energyloss
+
+
+@pytest.mark.parametrize("q", [0.0, 0.025, 0.1, 0.2])
+def test_frictionless_equals_eq8(q):
+    m, se, sl = energyloss.mean_dE(0.0, q, qt=q, n=100000)
+    assert abs(m - energyloss.frictionless_dE(q)) < 4 * se + 1e-15
+    assert energyloss.q_eff(energyloss.frictionless_dE(q)) == pytest.approx(q, abs=1e-12)
+
+
+@pytest.mark.parametrize("kappa,q", [(0.05, 0.0), (0.3, 0.025), (0.3, 0.1), (1.0, 0.05), (5.0, 0.2)])
+def test_monte_carlo_equals_closed_form(kappa, q):
+    m, se, sl = energyloss.mean_dE(kappa, q, n=100000, seed=7)
+    assert abs(m - energyloss.closed_form_dE(kappa, q)) < 4 * se
+
+
+def test_maximum_loss_near_kappa_0p3():
+    # Risso et al.: for fixed q the loss |<dE>| is largest at kappa ~ 0.3 (physics-notes: 0.26-0.33)
+    for q in (0.0, 0.025, 0.1):
+        k = energyloss.kappa_of_max_loss(q)
+        assert 0.2 < k < 0.4, (q, k)
+    # and it is a maximum of |<dE>| seen by the Monte Carlo too
+    lo = energyloss.mean_dE(0.05, 0.025, n=100000, seed=3)
+    mid = energyloss.mean_dE(0.3, 0.025, n=100000, seed=4)
+    hi = energyloss.mean_dE(3.0, 0.025, n=100000, seed=5)
+    assert mid[0] < lo[0] - 4 * (lo[1] + mid[1]) and mid[0] < hi[0] - 4 * (hi[1] + mid[1])
+
+
+def test_q_eff_undefined_beyond_minus_T0():
+    assert energyloss.q_eff(-1.2) is None
+    assert energyloss.q_eff(-1.0) == pytest.approx(0.5)
+    assert energyloss.q_eff(0.0) == 0.0
