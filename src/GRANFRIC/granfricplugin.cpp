@@ -6,6 +6,7 @@
 #include "version.h"
 
 #include "compute_hardsphere_collisions.h"
+#include "compute_hardsphere_convection.h"
 #include "compute_hardsphere_temp.h"
 #include "fix_hardsphere_ed.h"
 #include "fix_hardsphere_kick.h"
@@ -65,6 +66,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   add(reg, lmp, handle, "compute", "hardsphere/temp",
       "GRANFRIC translational and rotational temperatures of hard spheres and discs",
       (void *) &style_creator<ComputeHardsphereTemp>, false);
+  add(reg, lmp, handle, "compute", "hardsphere/convection",
+      "GRANFRIC convection order parameters Psi1, Psi2 (Risso et al. 2005)",
+      (void *) &style_creator<ComputeHardsphereConvection>, false);
   add(reg, lmp, handle, "compute", "hardsphere/collisions",
       "GRANFRIC collision statistics of fix hardsphere/ed",
       (void *) &style_creator<ComputeHardsphereCollisions>, false);

@@ -313,6 +313,29 @@ TEST_F(FixErrors, Kick)
   EXPECT_LMP_ERROR(lmp.get(), "run 0", "needs fix hardsphere/ed");
 }
 
+// Risso eqs 10-11 on flow fields of known order parameters: one roll v_y ~ sin(2 pi x / L),
+// two rolls v_y ~ -cos(2 pi x / L)
+TEST(ComputeConvection, OneAndTwoRolls)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n"
+                 "region box block -3 17 0 20 -0.5 0.5\ncreate_box 1 box\n"
+                 "lattice sq 1.0\ncreate_atoms 1 box\nset type 1 diameter 0.9\n"
+                 "variable vy atom 0.3*sin(2*PI*(x+3)/20)\n"
+                 "velocity all set 0.0 v_vy 0.0\ncompute c all hardsphere/convection\n"
+                 "thermo_style custom step c_c[1] c_c[2]\nrun 0 post no");
+  auto *c = lmp->modify->get_compute_by_id("c");
+  c->compute_vector();
+  EXPECT_NEAR(c->vector[0], 0.15, 1e-12);    // <0.3 sin^2> = 0.15
+  EXPECT_NEAR(c->vector[1], 0.0, 1e-12);
+  run(lmp.get(), "variable vy atom -0.3*cos(2*PI*(x+3)/20)\nvelocity all set 0.0 v_vy 0.0");
+  c->compute_vector();
+  EXPECT_NEAR(c->vector[0], 0.0, 1e-12);
+  EXPECT_NEAR(c->vector[1], 0.15, 1e-12);
+  EXPECT_LMP_ERROR(lmp.get(), "compute d all hardsphere/convection 3",
+                   "takes no arguments after the style name \\(1 given\\)");
+}
+
 TEST_F(FixErrors, Computes)
 {
   EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp inertia cube",

@@ -1,0 +1,24 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   GRANFRIC: compute ID group hardsphere/convection
+   global vector (Risso et al. 2005, eqs 10-11), x measured from the lower box edge:
+     Psi1 = (1/N) sum v_y sin(2 pi x / L_x),  Psi2 = -(1/N) sum v_y cos(2 pi x / L_x)
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_CONVECTION_H
+#define LMP_GRANFRIC_COMPUTE_HARDSPHERE_CONVECTION_H
+
+#include "compute.h"
+
+namespace LAMMPS_NS {
+
+class ComputeHardsphereConvection : public Compute {
+ public:
+  ComputeHardsphereConvection(class LAMMPS *, int, char **);
+  ~ComputeHardsphereConvection() override;
+  void init() override {}
+  void compute_vector() override;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
