@@ -18,8 +18,10 @@ echo "== main job (flagship): randomly driven rough spheres with friction (Herbs
 PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.herbst --quick --out "$out/herbst2005"
 echo "== free cooling of rough discs and spheres (Luding et al. 1998), simulation vs theory"
 PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.luding --quick --out "$out/luding1998"
+echo "== mean energy loss per collision (Risso et al. 2005, Fig. 1) through the C++ law"
+PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric reproduce risso2005 --quick --out "$out/risso2005" > /dev/null
 echo "== collision laws of the three papers through the GRANFRIC core"
 PYTHONPATH="$root/tools" /usr/bin/python3 -m granfric.collision_demo --out "$out/collisions" > /dev/null
 echo "== done: $out/herbst2005/driven.png and report.md (flagship),"
-echo "         $out/luding1998/cooling.png and report.md,"
+echo "         $out/luding1998/cooling.png and report.md, $out/risso2005/energy_loss.png,"
 echo "         $out/collisions/collision_laws.png"

@@ -35,3 +35,11 @@ def test_read_thermo(tmp_path):
     assert list(d["Step"]) == [10, 20] and list(d["c_T[1]"]) == [0.5, 0.25]
     d0 = lammpslog.read_thermo(str(log), block=0)
     assert list(d0["Time"]) == [0, 1.0]
+
+
+def test_reproduce_risso_quick(tmp_path):
+    from granfric import __main__ as cli
+    cli.main(["reproduce", "risso2005", "--quick", "--out", str(tmp_path)])
+    assert (tmp_path / "energy_loss.png").stat().st_size > 10000
+    report = (tmp_path / "report.md").read_text()
+    assert "kappa of maximum loss" in report

@@ -14,7 +14,7 @@ EnergyLossResult mean_energy_loss(const LawParams &law, double q, int dim, doubl
   std::uniform_real_distribution<double> U(0.0, 2.0 * M_PI);
   const double m = 1.0, a = 0.5, I = q * m * a * a;
   const double sv = std::sqrt(T0 / m), sw = std::sqrt(T0 / I);
-  double wsum = 0.0, w2sum = 0.0, sum = 0.0, sum2 = 0.0, slide = 0.0;
+  double wsum = 0.0, w2sum = 0.0, sum = 0.0, w2x = 0.0, w2x2 = 0.0, slide = 0.0;
   long used = 0;
   while (used < n) {
     Body b1, b2;
@@ -45,16 +45,17 @@ EnergyLossResult mean_energy_loss(const LawParams &law, double q, int dim, doubl
     wsum += w;
     w2sum += w * w;
     sum += w * c.dE;
-    sum2 += w * c.dE * c.dE;
+    w2x += w * w * c.dE;
+    w2x2 += w * w * c.dE * c.dE;
     if (c.sliding) slide += w;
     used++;
   }
   EnergyLossResult r;
   r.samples = used;
   r.mean = sum / wsum;
-  const double var = sum2 / wsum - r.mean * r.mean;
-  const double neff = wsum * wsum / w2sum;
-  r.stderr_ = std::sqrt(std::max(0.0, var) / neff);
+  // standard error of the ratio estimator sum w x / sum w: sum w^2 (x - mean)^2 / (sum w)^2
+  const double s2 = w2x2 - 2.0 * r.mean * w2x + r.mean * r.mean * w2sum;
+  r.stderr_ = std::sqrt(std::max(0.0, s2)) / wsum;
   r.sliding = slide / wsum;
   return r;
 }
