@@ -86,6 +86,15 @@ struct CoreRun {
     o.gravity = ref.gravity;
     o.tc = ref.tc;
     o.max_collisions = cap;
+    for (int d = 0; d < 3; d++) o.periodic[d] = ref.periodic[d];
+    for (const auto &w : ref.walls) {
+      EDWall e;
+      e.dim = w.dim;
+      e.side = w.side;
+      e.pos = w.pos;
+      e.laws.assign(ref.ntypes + 1, w.law);
+      o.walls.push_back(e);
+    }
     ed.configure(o, ref.ntypes, ref.laws);
     ed.resize((int) ref.p.size());
     for (size_t i = 0; i < ref.p.size(); i++) {

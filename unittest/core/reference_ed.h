@@ -29,8 +29,17 @@ struct RefParticle {
   int last_off[3] = {0, 0, 0};
 };
 
+struct RefWall {
+  int dim = 1, side = -1;
+  double pos = 0.0;
+  LawParams law;
+};
+
 struct Reference {
   int dim = 3;
+  bool periodic[3] = {true, true, true};
+  std::vector<RefWall> walls;
+  long wall_collisions = 0;
   Vec3 lo, L;
   Vec3 gravity;
   double tc = 0.0;
@@ -61,7 +70,8 @@ struct Reference {
   // minimum-image separation per periodic dimension
   Vec3 min_image(Vec3 r) const
   {
-    for (int d = 0; d < dim; d++) r[d] -= L[d] * std::round(r[d] / L[d]);
+    for (int d = 0; d < dim; d++)
+      if (periodic[d]) r[d] -= L[d] * std::round(r[d] / L[d]);
     return r;
   }
 
@@ -77,18 +87,34 @@ struct Reference {
       // so image offsets of -1, 0, +1 around it contain every possible contact
       double H = INF;
       for (int d = 0; d < dim; d++)
-        H = std::min(H, (1.5 * L[d] - 2.0 * amax) / (2.0 * vmax + 1e-300));
+        if (periodic[d]) H = std::min(H, (1.5 * L[d] - 2.0 * amax) / (2.0 * vmax + 1e-300));
       double best = std::min(H, t_end - time);
-      int bi = -1, bj = -1, boff[3] = {0, 0, 0};
+      int bi = -1, bj = -1, boff[3] = {0, 0, 0}, bwall = -1;
+      for (int i = 0; i < n; i++) {
+        const Vec3 xi = pos(p[i], time), vi = vel(p[i], time);
+        for (int k = 0; k < (int) walls.size(); k++) {
+          const RefWall &w = walls[k];
+          const int d = w.dim;
+          const double tau = w.side < 0 ? crossing_time(xi[d], vi[d], gravity[d], w.pos + p[i].a, -1)
+                                        : crossing_time(xi[d], vi[d], gravity[d], w.pos - p[i].a, +1);
+          if (tau < best) {
+            best = tau;
+            bi = i;
+            bwall = k;
+          }
+        }
+      }
       for (int i = 0; i < n; i++) {
         const Vec3 xi = pos(p[i], time), vi = vel(p[i], time);
         for (int j = i + 1; j < n; j++) {
           const Vec3 r = xi - pos(p[j], time), v = vi - vel(p[j], time);
           int k0[3] = {0, 0, 0};
-          for (int d = 0; d < dim; d++) k0[d] = (int) std::lround(r[d] / L[d]);
-          const int kz = dim == 3 ? 1 : 0;
-          for (int kx = -1; kx <= 1; kx++)
-            for (int ky = -1; ky <= 1; ky++)
+          for (int d = 0; d < dim; d++)
+            if (periodic[d]) k0[d] = (int) std::lround(r[d] / L[d]);
+          const int kx0 = periodic[0] ? 1 : 0, ky0 = periodic[1] ? 1 : 0;
+          const int kz = dim == 3 && periodic[2] ? 1 : 0;
+          for (int kx = -kx0; kx <= kx0; kx++)
+            for (int ky = -ky0; ky <= ky0; ky++)
               for (int k3 = -kz; k3 <= kz; k3++) {
                 const int off[3] = {k0[0] + kx, k0[1] + ky, k0[2] + k3};
                 if (p[i].last_partner == j && p[j].last_partner == i &&
@@ -101,6 +127,7 @@ struct Reference {
                   best = tau;
                   bi = i;
                   bj = j;
+                  bwall = -1;
                   for (int d = 0; d < 3; d++) boff[d] = off[d];
                 }
               }
@@ -118,6 +145,24 @@ struct Reference {
       }
       time += best;
       if (bi < 0) continue;
+      if (bwall >= 0) {
+        RefParticle &a = p[bi];
+        bring(a, time);
+        const RefWall &w = walls[bwall];
+        Vec3 nn;
+        nn[w.dim] = w.side < 0 ? 1.0 : -1.0;
+        LawParams law = w.law;
+        const double sa = time - a.t_last;
+        if (tc > 0 && sa >= 0 && sa < tc) law = law.elastic();
+        const Collision c = collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body::wall(Vec3()), nn);
+        a.v = c.v1;
+        a.w = c.w1;
+        a.t_last = time;
+        a.last_partner = -1;
+        dE += c.dE;
+        wall_collisions++;
+        continue;
+      }
       RefParticle &a = p[bi], &b = p[bj];
       bring(a, time);
       bring(b, time);

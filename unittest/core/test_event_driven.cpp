@@ -237,6 +237,50 @@ TEST(EventDriven, GlobalKicksEqualReference)
   }
 }
 
+// a box with walls below and above (y), periodic in x (and z), under gravity toward the floor;
+// every law, 2D and 3D, against the reference; nobody crosses a wall
+TEST(EventDriven, WallsEqualReferenceAndHold)
+{
+  for (int law = 0; law < 3; law++)
+    for (int dim = 2; dim <= 3; dim++) {
+      SystemSpec s;
+      s.n = 80;
+      s.dim = dim;
+      s.phi = 0.2;
+      s.seed = 31 + law * 2 + dim;
+      Reference ref = make_system(s, law_of(law));
+      ref.periodic[1] = false;
+      ref.gravity = dim == 2 ? Vec3(0.1, -0.4, 0.0) : Vec3(0.0, -0.4, 0.1);
+      // make room: walls half a diameter outside the particles' range
+      ref.walls.push_back({1, -1, ref.lo.y - 0.6, law_of((law + 1) % 3)});
+      ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, law_of(law)});
+      const double mft = mean_free_time(ref);
+      CoreRun run(ref);
+      run.ed.start();
+      // ~5 collisions per particle: longer horizons lose 1e-9 to chaos, not to errors
+      const double dt = 0.55 * mft;
+      const int nwin = 9;
+      for (int w = 0; w < nwin; w++) {
+        run.total.add(run.ed.advance_to(dt));
+        run.ed.rebase(dt);
+        for (int i = 0; i < run.ed.size(); i++) {
+          const double y = run.ed.position(i, 0.0).y, a = run.ed.particle(i).a;
+          ASSERT_GE(y - a, ref.walls[0].pos - 1e-9) << "through the floor";
+          ASSERT_LE(y + a, ref.walls[1].pos + 1e-9) << "through the ceiling";
+        }
+      }
+      ref.run_until(nwin * dt);
+      EXPECT_GT(run.total.wall_collisions, 10);
+      EXPECT_LT(run.total.collisions, 8 * s.n);
+      EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
+      EXPECT_EQ(run.total.collisions, ref.collisions);
+      for (size_t i = 0; i < ref.p.size(); i++) {
+        EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+        EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+      }
+    }
+}
+
 TEST(EventDriven, ElasticSmoothGasConservesEnergy)
 {
   SystemSpec s;

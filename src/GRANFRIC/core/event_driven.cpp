@@ -16,6 +16,8 @@ void EDStats::add(const EDStats &o)
   crossings += o.crossings;
   max_collisions_one_particle = std::max(max_collisions_one_particle, o.max_collisions_one_particle);
   dE += o.dE;
+  wall_collisions += o.wall_collisions;
+  dE_wall += o.dE_wall;
   injected += o.injected;
   global_events += o.global_events;
   if (gamma_hist.size() < o.gamma_hist.size()) gamma_hist.resize(o.gamma_hist.size(), 0);
@@ -34,9 +36,16 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   L = Vec3(o.hi[0] - o.lo[0], o.hi[1] - o.lo[1], o.hi[2] - o.lo[2]);
   if (o.dim == 2 && o.gravity.z != 0.0)
     throw std::invalid_argument("gravity must lie in the x-y plane in 2d");
-  for (int d = 0; d < o.dim; d++)
-    if (!o.periodic[d])
-      throw std::invalid_argument("non-periodic boundaries need walls (not available yet)");
+  for (int d = 0; d < o.dim; d++) {
+    bool wall = false;
+    for (const auto &w : o.walls) {
+      if (w.dim == d) wall = true;
+      if (o.periodic[w.dim]) throw std::invalid_argument("walls must be in non-periodic dimensions");
+      if ((int) w.laws.size() != nt + 1) throw std::invalid_argument("wall law table must have ntypes+1 entries");
+    }
+    if (!o.periodic[d] && !wall)
+      throw std::invalid_argument("a non-periodic dimension needs at least one wall");
+  }
 }
 
 Vec3 EventDriven::pos(int i, double t) const
@@ -143,7 +152,8 @@ void EventDriven::setup_cells()
         p.img[d] = 0;
         continue;
       }
-      const long u = (long) std::floor((p.x[d] - opt.lo[d]) / cw[d]);
+      long u = (long) std::floor((p.x[d] - opt.lo[d]) / cw[d]);
+      if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
       long img = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
       p.img[d] = (int) img;
       p.c[d] = (int) (u - img * nc[d]);
@@ -183,6 +193,8 @@ void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
     const double blo = opt.lo[d] + ((double) p.c[d] + (double) p.img[d] * nc[d]) * cw[d];
     const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) p.img[d] * nc[d]) * cw[d];
     double tup, tdn;
+    const bool edge_lo = !opt.periodic[d] && p.c[d] == 0;
+    const bool edge_hi = !opt.periodic[d] && p.c[d] == nc[d] - 1;
     if (opt.gravity[d] == 0.0) {
       // straight flight: only the boundary ahead can be reached
       tup = vi[d] > 0.0 ? now + std::max(0.0, (bhi - xi[d]) / vi[d]) : NEVER;
@@ -191,6 +203,8 @@ void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
       tup = now + crossing_time(xi[d], vi[d], opt.gravity[d], bhi, +1);
       tdn = now + crossing_time(xi[d], vi[d], opt.gravity[d], blo, -1);
     }
+    if (edge_hi) tup = NEVER;
+    if (edge_lo) tdn = NEVER;
     if (tup < p.xt) {
       p.xt = tup;
       p.xdim = d;
@@ -212,13 +226,16 @@ void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dh
   const bool gravity = has_gravity;
   for (int dz = dlo[2]; dz <= dhi[2]; dz++) {
     int uz = p.c[2] + dz, kz = 0;
-    if (uz < 0) { uz += nc[2]; kz = -1; } else if (uz >= nc[2]) { uz -= nc[2]; kz = 1; }
+    if (uz < 0) { if (!opt.periodic[2]) continue; uz += nc[2]; kz = -1; }
+    else if (uz >= nc[2]) { if (!opt.periodic[2]) continue; uz -= nc[2]; kz = 1; }
     for (int dy = dlo[1]; dy <= dhi[1]; dy++) {
       int uy = p.c[1] + dy, ky = 0;
-      if (uy < 0) { uy += nc[1]; ky = -1; } else if (uy >= nc[1]) { uy -= nc[1]; ky = 1; }
+      if (uy < 0) { if (!opt.periodic[1]) continue; uy += nc[1]; ky = -1; }
+      else if (uy >= nc[1]) { if (!opt.periodic[1]) continue; uy -= nc[1]; ky = 1; }
       for (int dx = dlo[0]; dx <= dhi[0]; dx++) {
         int ux = p.c[0] + dx, kx = 0;
-        if (ux < 0) { ux += nc[0]; kx = -1; } else if (ux >= nc[0]) { ux -= nc[0]; kx = 1; }
+        if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
+        else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = next[j]) {
           if (j == i) continue;
@@ -260,6 +277,66 @@ void EventDriven::schedule(int i)
     p.et = p.xt;
     p.ekind = CROSSING;
   }
+  if (p.wt < p.et) {
+    p.et = p.wt;
+    p.ekind = WALL;
+  }
+}
+
+// next contact of the particle's surface with a wall, moving toward it
+void EventDriven::predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  EDParticle &p = P[i];
+  p.wt = NEVER;
+  p.wall = -1;
+  for (int k = 0; k < (int) opt.walls.size(); k++) {
+    const EDWall &w = opt.walls[k];
+    const int d = w.dim;
+    const double t = w.side < 0 ? crossing_time(xi[d], vi[d], opt.gravity[d], w.pos + p.a, -1)
+                                : crossing_time(xi[d], vi[d], opt.gravity[d], w.pos - p.a, +1);
+    if (now + t < p.wt) {
+      p.wt = now + t;
+      p.wall = k;
+    }
+  }
+}
+
+void EventDriven::collide_wall(int i)
+{
+  EDParticle &p = P[i];
+  const double t = p.wt;
+  advance(i, t);
+  const EDWall &w = opt.walls[p.wall];
+  Vec3 n;
+  n[w.dim] = w.side < 0 ? 1.0 : -1.0;
+  LawParams law = w.laws[p.type];
+  const double since = t - p.t_last;
+  if (opt.tc > 0.0 && since >= 0.0 && since < opt.tc) {
+    law = law.elastic();
+    stats.tc_elastic++;
+  }
+  Body b{p.v, p.w, p.m, p.a, p.q};
+  const Collision c = collide(law, b, Body::wall(Vec3()), n);
+  p.v = c.v1;
+  p.w = c.w1;
+  p.t_last = t;
+  p.ncoll++;
+  p.last_partner = -1;
+  stats.wall_collisions++;
+  stats.dE_wall += c.dE;
+  if (c.sliding) stats.sliding++;
+  if (c.energy_created) stats.energy_created++;
+  const long ni = ++p.ncollisions;
+  stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
+  if (ni > opt.max_collisions) {
+    std::ostringstream s;
+    s << "particle " << ext[i] << " collided " << ni << " times within one window (cap "
+      << opt.max_collisions << "), the last time with a wall: inelastic collapse; use the TC "
+      << "model (tc) or a larger cap";
+    throw EventCapError(s.str(), ext[i], ext[i], t, ni);
+  }
+  predict(i);
+  reschedule(i);
 }
 
 void EventDriven::predict(int i)
@@ -267,6 +344,7 @@ void EventDriven::predict(int i)
   EDParticle &p = P[i];
   const Vec3 xi = pos(i, now), vi = vel(i, now);
   predict_crossing(i, xi, vi);
+  predict_wall(i, xi, vi);
   p.ct = NEVER;
   p.cpartner = -1;
   const int zr = opt.dim == 3 ? 1 : 0;
@@ -418,6 +496,8 @@ EDStats EventDriven::advance_to(double t_end)
       }
     } else if (p.ekind == CROSSING) {
       cross(i);
+    } else if (p.ekind == WALL) {
+      collide_wall(i);
     } else {
       break;
     }
@@ -471,6 +551,7 @@ void EventDriven::rebase(double dt)
     p.et -= dt;
     p.ct -= dt;
     p.xt -= dt;
+    p.wt -= dt;
     p.t_last -= dt;
   }
   queue.shift(dt);

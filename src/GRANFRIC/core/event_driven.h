@@ -49,6 +49,18 @@ struct EDParticle {
   int coff[3] = {0, 0, 0};    //   partner's unwrapped position is shifted by coff * L
   double xt = NEVER;          // next cell crossing: time,
   int xdim = 0, xdir = 0;     //   dimension and direction (+1 / -1)
+  double wt = NEVER;          // next wall collision: time,
+  int wall = -1;              //   which wall
+};
+
+// A static plane wall normal to dimension dim at position pos: side -1 bounds the particles
+// from below (they live at x[dim] > pos, the wall normal is +e_dim), side +1 from above. The
+// collision law is the wall limit of the particle's law, per particle type.
+struct EDWall {
+  int dim = 1;
+  int side = -1;
+  double pos = 0.0;
+  std::vector<LawParams> laws;    // by particle type (index 0 unused)
 };
 
 struct EDOptions {
@@ -59,12 +71,15 @@ struct EDOptions {
   double tc = 0.0;                      // TC model duration (0: off)
   long max_collisions = 1000000;        // per particle per window (inelastic-collapse guard)
   int gamma_bins = 0;                   // > 0: histogram of impact angles in (pi/2, pi]
+  std::vector<EDWall> walls;            // in non-periodic dimensions
 };
 
 struct EDStats {
   long collisions = 0, sliding = 0, tc_elastic = 0, energy_created = 0, crossings = 0;
   long max_collisions_one_particle = 0;
-  double dE = 0.0;                      // sum of collision energy changes (< 0: dissipated)
+  double dE = 0.0;                      // sum of pair collision energy changes (< 0: dissipated)
+  long wall_collisions = 0;
+  double dE_wall = 0.0;                 // sum of wall collision energy changes
   double injected = 0.0;                // kinetic energy added by instant global events (kicks)
   long global_events = 0;
   std::vector<long> gamma_hist;         // impact angles, EDOptions::gamma_bins bins
@@ -85,7 +100,7 @@ class EventCapError : public std::runtime_error {
 
 class EventDriven {
  public:
-  enum { NONE = 0, COLLISION = 1, CROSSING = 2 };
+  enum { NONE = 0, COLLISION = 1, CROSSING = 2, WALL = 3 };
 
   // laws: (ntypes+1)^2 table indexed [itype * (ntypes+1) + jtype]
   void configure(const EDOptions &opt, int ntypes, const std::vector<LawParams> &laws);
@@ -153,7 +168,9 @@ class EventDriven {
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
   // collision candidates in the block of cells at offsets dlo..dhi
   void scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dhi[3]);
-  void schedule(int i);                  // et, ekind from the two candidates
+  void schedule(int i);                  // et, ekind from the candidates
+  void predict_wall(int i, const Vec3 &xi, const Vec3 &vi);
+  void collide_wall(int i);
   void collide_pair(int i);
   void cross(int i);
   void reschedule(int i) { queue.update(i, P[i].et); }
