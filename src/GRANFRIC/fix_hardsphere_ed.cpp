@@ -5,6 +5,7 @@
 #include "fix_hardsphere_ed.h"
 
 #include "fix_hardsphere_kick.h"
+#include "fix_hardsphere_wall.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -116,17 +117,12 @@ void FixHardsphereED::init()
   nlevels_respa = 0;
   if (utils::strmatch(update->integrate_style, "^respa"))
     nlevels_respa = (dynamic_cast<Respa *>(update->integrate))->nlevels;
-  for (int d = 0; d < domain->dimension; d++)
-    if (!domain->periodicity[d])
-      error->all(FLERR,
-                 "Fix hardsphere/ed needs periodic boundaries in x, y{} (walls for "
-                 "non-periodic boundaries are not available yet)",
-                 domain->dimension == 3 ? " and z" : "");
-
   kicks.clear();
+  walls.clear();
   for (const auto &f : modify->get_fix_list()) {
     if (f == this) continue;
     if (auto *k = dynamic_cast<FixHardsphereKick *>(f)) kicks.push_back(k);
+    if (auto *w = dynamic_cast<FixHardsphereWall *>(f)) walls.push_back(w);
     if (utils::strmatch(f->style, "^gravity"))
       error->all(FLERR,
                  "Fix {} (gravity) acts together with fix hardsphere/ed {}: use the gravity "
@@ -137,6 +133,15 @@ void FixHardsphereED::init()
                  "Fix {} ({}) integrates the same atoms as fix hardsphere/ed {}: hard particles "
                  "must be moved by fix hardsphere/ed alone",
                  f->id, f->style, id);
+  }
+  for (int d = 0; d < domain->dimension; d++) {
+    if (domain->periodicity[d]) continue;
+    bool wall = false;
+    for (auto *w : walls)
+      if (w->dimension() == d) wall = true;
+    if (!wall)
+      error->all(FLERR, "Fix hardsphere/ed: the non-periodic dimension {} needs a fix "
+                 "hardsphere/wall (at least on one side)", "xyz"[d]);
   }
   if (comm->nprocs > 1 && comm->me == 0)
     error->warning(FLERR,
@@ -179,6 +184,7 @@ void FixHardsphereED::configure_core()
   o.tc = tc;
   o.max_collisions = maxevents;
   o.gamma_bins = gamma_bins;
+  for (auto *w : walls) o.walls.push_back(w->wall());
   const int nt = atom->ntypes;
   std::vector<granfric::LawParams> laws((nt + 1) * (nt + 1));
   for (int i = 1; i <= nt; i++)
@@ -409,6 +415,8 @@ void FixHardsphereED::initial_integrate(int)
   totals[TC_ELASTIC] += (double) last.tc_elastic;
   totals[ENERGY_CREATING] += (double) last.energy_created;
   totals[INJECTED] += last.injected * force->mvv2e;
+  totals[WALL_COLLISIONS] += (double) last.wall_collisions;
+  totals[DISSIPATED] -= last.dE_wall * force->mvv2e;
 }
 
 double FixHardsphereED::compute_vector(int n)

@@ -31,7 +31,7 @@ class FixHardsphereED : public Fix {
   // QUEUE_REBUILDS: the fix's own neighbour structure (cell grid and every prediction) rebuilt
   // from scratch, because something outside the fix changed the atoms or a new run began
   enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, QUEUE_REBUILDS,
-         TC_ELASTIC, ENERGY_CREATING, INJECTED, NVECTOR };
+         TC_ELASTIC, ENERGY_CREATING, INJECTED, WALL_COLLISIONS, NVECTOR };
 
   FixHardsphereED(class LAMMPS *, int, char **);
   ~FixHardsphereED() override;
@@ -90,6 +90,7 @@ class FixHardsphereED : public Fix {
   std::vector<int> offset;                      // periods between the core's frame and LAMMPS's
   std::vector<int> jumped;                      // periods this fix wrapped in the last window
   std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window
+  std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window
   std::vector<int> cmask;                       // atom masks in core order
 
   void configure_core();

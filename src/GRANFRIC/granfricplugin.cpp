@@ -10,6 +10,7 @@
 #include "compute_hardsphere_temp.h"
 #include "fix_hardsphere_ed.h"
 #include "fix_hardsphere_kick.h"
+#include "fix_hardsphere_wall.h"
 #include "pair_hardsphere.h"
 
 using namespace LAMMPS_NS;
@@ -63,6 +64,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   add(reg, lmp, handle, "fix", "hardsphere/kick",
       "GRANFRIC homogeneous stochastic driving (Gaussian kicks at exact times)",
       (void *) &style_creator<FixHardsphereKick>, false);
+  add(reg, lmp, handle, "fix", "hardsphere/wall",
+      "GRANFRIC plane wall for fix hardsphere/ed (exact wall collisions)",
+      (void *) &style_creator<FixHardsphereWall>, false);
   add(reg, lmp, handle, "compute", "hardsphere/temp",
       "GRANFRIC translational and rotational temperatures of hard spheres and discs",
       (void *) &style_creator<ComputeHardsphereTemp>, false);

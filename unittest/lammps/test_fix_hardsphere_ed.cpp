@@ -315,6 +315,104 @@ TEST_F(FixErrors, Kick)
 
 // Risso eqs 10-11 on flow fields of known order parameters: one roll v_y ~ sin(2 pi x / L),
 // two rolls v_y ~ -cos(2 pi x / L)
+// a gas between a floor and a ceiling under gravity: trajectories equal the brute-force
+// reference with the same walls, nobody leaves the box, and every invalid wall input errs
+TEST(FixHardsphereWall, EqualsReferenceAndHolds)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    auto lmp = make_lammps();
+    std::string s = gas(dim, dim == 2 ? 120 : 100, dim == 2 ? 20.0 : 8.0, 77);
+    s.replace(s.find("boundary p p p"), 14, "boundary p f p");
+    // atoms at least a radius away from the floor and the ceiling
+    const std::string side = dim == 2 ? "20.0" : "8.0";
+    s.replace(s.find("NULL overlap"), 4, "inner");
+    s.replace(s.find("create_atoms"), 0, "region inner block EDGE EDGE 0.6 " +
+              std::to_string(std::stod(side) - 0.6) + " EDGE EDGE\n");
+    run(lmp.get(), s + "pair_style hardsphere/walton" + (dim == 2 ? " inertia disc" : "") +
+                       "\npair_coeff * * 0.9 0.4 0.3\n"
+                       "fix ed all hardsphere/ed gravity 0.0 -0.3 0.0 tc 0.01\n"
+                       "fix floor all hardsphere/wall ylo EDGE\n"
+                       "fix top all hardsphere/wall yhi EDGE coeffs 0.7 inf 0.5\n"
+                       "timestep 0.1\nthermo 0\nrun 0 post no");
+    Reference ref = reference_of(lmp.get());
+    ref.periodic[1] = false;
+    ref.gravity = Vec3(0.0, -0.3, 0.0);
+    ref.tc = 0.01;    // a ball bouncing on an inelastic floor collapses without it
+    auto *dom = lmp->domain;
+    ref.walls.push_back({1, -1, dom->boxlo[1], granfric::LawParams::walton(0.9, 0.4, 0.3)});
+    ref.walls.push_back({1, +1, dom->boxhi[1], granfric::LawParams::walton(0.7, granfric::INF, 0.5)});
+    for (int step = 0; step < 25; step++) {
+      run(lmp.get(), "run 1 post no");
+      for (int i = 0; i < lmp->atom->nlocal; i++) {
+        ASSERT_GE(lmp->atom->x[i][1] - lmp->atom->radius[i], dom->boxlo[1] - 1e-12);
+        ASSERT_LE(lmp->atom->x[i][1] + lmp->atom->radius[i], dom->boxhi[1] + 1e-12);
+      }
+    }
+    ref.run_until(25 * 0.1);
+    auto *fix = lmp->modify->get_fix_by_id("ed");
+    EXPECT_GT(fix->compute_vector(9), 10.0) << "wall collisions";
+    EXPECT_LT(fix->compute_vector(1), 8.0 * lmp->atom->natoms) << "a few collisions per particle";
+    EXPECT_EQ((long) fix->compute_vector(9), ref.wall_collisions);
+    EXPECT_EQ((long) fix->compute_vector(1), ref.collisions);
+    EXPECT_NEAR(fix->compute_vector(2), -ref.dE, 1e-9 * std::fabs(ref.dE));
+    EXPECT_LT(max_deviation(lmp.get(), ref), 1e-9);
+  }
+}
+
+// a ball dropped on an inelastic floor bounces infinitely often in finite time (r^k series):
+// without the TC model the event cap stops the run with a clear error, with it the ball rests
+TEST(FixHardsphereWall, BouncingBallCollapseAndTC)
+{
+  const std::string ball = "units lj\ndimension 2\natom_style sphere\nboundary p f p\n"
+                           "comm_modify vel yes\nregion box block 0 10 0 10 -0.5 0.5\n"
+                           "create_box 1 box\ncreate_atoms 1 single 5 3 0\n"
+                           "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.8 -1.0\n"
+                           "fix floor all hardsphere/wall ylo EDGE\ntimestep 10.0\nthermo 0\n";
+  auto lmp = make_lammps();
+  run(lmp.get(), ball + "fix ed all hardsphere/ed gravity 0 -1 0 maxevents 10000");
+  // it reaches the floor after 2.2 time units and would come to rest at t = 20
+  EXPECT_LMP_ERROR(lmp.get(), "run 3 post no",
+                   "atom 1 had 10001 collisions within step [0-9]+ \\(maxevents 10000\\), the "
+                   "last one with atom 1");
+  lmp.reset();
+  auto l2 = make_lammps();
+  // with t_c the ball ends up bouncing elastically with a period below t_c (height < g t_c^2/8)
+  run(l2.get(), ball + "fix ed all hardsphere/ed gravity 0 -1 0 maxevents 10000 tc 0.05\n"
+                       "run 3 post no");
+  EXPECT_GE(l2->atom->x[0][1], 0.5 - 1e-9);
+  EXPECT_LT(l2->atom->x[0][1], 0.5 + 0.05 * 0.05 / 8 + 1e-9);
+}
+
+TEST_F(FixErrors, Wall)
+{
+  run(lmp.get(), "fix ed all hardsphere/ed");
+  EXPECT_LMP_ERROR(lmp.get(), "fix w all hardsphere/wall ylo EDGE",
+                   "face ylo needs a non-periodic boundary in y");
+  EXPECT_LMP_ERROR(lmp.get(), "fix w all hardsphere/wall top EDGE",
+                   "face top is not one of xlo, xhi, ylo, yhi, zlo, zhi");
+  EXPECT_LMP_ERROR(lmp.get(), "fix w all hardsphere/wall zlo EDGE", "not allowed in a 2d simulation");
+  EXPECT_LMP_ERROR(lmp.get(), "fix w all hardsphere/wall ylo", "Illegal fix hardsphere/wall");
+  lmp.reset();
+  auto l = make_lammps();
+  run(l.get(), "units lj\ndimension 2\natom_style sphere\nboundary p f p\ncomm_modify vel yes\n"
+               "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 5 0\n"
+               "pair_style hardsphere/rough\npair_coeff * * 0.9 0.0\nfix ed all hardsphere/ed");
+  // (a fix whose constructor failed leaves its ID half-defined in LAMMPS: use fresh IDs)
+  EXPECT_LMP_ERROR(l.get(), "fix w1 all hardsphere/wall ylo abc", "Expected floating point");
+  EXPECT_LMP_ERROR(l.get(), "fix w2 all hardsphere/wall ylo EDGE spin 3",
+                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs\\)");
+  EXPECT_LMP_ERROR(l.get(), "fix w3 all hardsphere/wall ylo EDGE coeffs",
+                   "coeffs needs the law's coefficients");
+  run(l.get(), "fix w4 all hardsphere/wall ylo EDGE coeffs 0.9");
+  EXPECT_LMP_ERROR(l.get(), "run 0", "coeffs: 1 values given, pair style hardsphere/rough takes 2 \\(r beta\\)");
+  run(l.get(), "unfix w4\nfix w5 all hardsphere/wall ylo EDGE coeffs 1.5 0.0");
+  EXPECT_LMP_ERROR(l.get(), "run 0", "r = 1.5 is out of range");
+  run(l.get(), "unfix w5\nfix w6 all hardsphere/wall ylo 12.0");
+  EXPECT_LMP_ERROR(l.get(), "run 0", "position 12 lies outside the box");
+  run(l.get(), "unfix w6\nunfix ed\nfix w7 all hardsphere/wall ylo EDGE\nfix n all nve/sphere");
+  EXPECT_LMP_ERROR(l.get(), "run 0", "needs fix hardsphere/ed");
+}
+
 TEST(ComputeConvection, OneAndTwoRolls)
 {
   auto lmp = make_lammps();
@@ -386,7 +484,7 @@ TEST(FixErrorsBox, NonPeriodicAndPointParticles)
   run(lmp.get(), "units lj\ndimension 2\natom_style sphere\nboundary p f p\ncomm_modify vel yes\n"
                  "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 5 0\n"
                  "pair_style hardsphere/rough\npair_coeff * * 0.9 0.0\nfix ed all hardsphere/ed");
-  EXPECT_LMP_ERROR(lmp.get(), "run 0", "needs periodic boundaries in x, y \\(walls for non-periodic");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "the non-periodic dimension y needs a fix hardsphere/wall");
   lmp.reset();
   auto l2 = make_lammps();
   run(l2.get(), "units lj\ndimension 2\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n"

@@ -1,0 +1,41 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   GRANFRIC: fix ID group hardsphere/wall face pos [coeffs c1 c2 ...]
+
+   A static plane wall for fix hardsphere/ed: face xlo|xhi|ylo|yhi|zlo|zhi in a non-periodic
+   dimension, at position pos (a number or EDGE = the box boundary). Collisions with it are
+   processed exactly by the event loop, with the wall limit of the hardsphere pair style's law:
+   its own coefficients after the keyword coeffs (the values pair_coeff takes), or by default
+   those of pair_coeff I I for particles of type I.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANFRIC_FIX_HARDSPHERE_WALL_H
+#define LMP_GRANFRIC_FIX_HARDSPHERE_WALL_H
+
+#include "fix.h"
+
+#include "core/event_driven.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixHardsphereWall : public Fix {
+ public:
+  FixHardsphereWall(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  // the wall for the core, at the current box (after init(), which validates the coefficients)
+  granfric::EDWall wall() const;
+  int dimension() const { return dim; }
+
+ private:
+  int dim, side;
+  bool edge;
+  double pos;
+  std::vector<std::string> coeffs;    // own law coefficients (empty: the pair style's I,I)
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
