@@ -16,7 +16,7 @@
 using namespace LAMMPS_NS;
 
 FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), dim(1), side(-1), edge(false), pos(0.0)
+    Fix(lmp, narg, arg), dim(1), side(-1), edge(false), pos(0.0), temperature(-1.0), seed(1)
 {
   if (narg < 5) utils::missing_cmd_args(FLERR, "fix hardsphere/wall face pos", error);
   const std::string face = arg[3];
@@ -47,8 +47,17 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
       if (coeffs.empty())
         error->all(FLERR, "Fix hardsphere/wall coeffs needs the law's coefficients, as pair_coeff "
                    "takes them");
+    } else if (strcmp(arg[iarg], "thermal") == 0) {
+      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/wall thermal T seed", error);
+      temperature = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      seed = utils::bnumeric(FLERR, arg[iarg + 2], false, lmp);
+      if (!(temperature >= 0.0))
+        error->all(FLERR, "Fix hardsphere/wall thermal T = {} must be >= 0", temperature);
+      if (seed <= 0) error->all(FLERR, "Fix hardsphere/wall thermal seed = {} must be > 0", seed);
+      iarg += 3;
     } else {
-      error->all(FLERR, "Unknown fix hardsphere/wall keyword: {} (allowed: coeffs)", arg[iarg]);
+      error->all(FLERR, "Unknown fix hardsphere/wall keyword: {} (allowed: coeffs, thermal)",
+                 arg[iarg]);
     }
   }
 }
@@ -89,6 +98,9 @@ granfric::EDWall FixHardsphereWall::wall() const
   w.dim = dim;
   w.side = side;
   w.pos = edge ? (side < 0 ? domain->boxlo[dim] : domain->boxhi[dim]) : pos;
+  // a thermal wall draws velocities at T (energy units) from the Maxwellian of m v^2 / 2
+  if (temperature >= 0.0) w.T = temperature * force->boltz / force->mvv2e;
+  w.seed = (uint64_t) seed;
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   const int nt = atom->ntypes;
   w.laws.resize(nt + 1);

@@ -1,5 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   GRANFRIC: fix ID group hardsphere/wall face pos [coeffs c1 c2 ...]
+   GRANFRIC: plane walls.
+
+   fix ID group hardsphere/wall face pos [coeffs c1 c2 ...] [thermal T seed]
 
    A static plane wall for fix hardsphere/ed: face xlo|xhi|ylo|yhi|zlo|zhi in a non-periodic
    dimension, at position pos (a number or EDGE = the box boundary). Collisions with it are
@@ -34,6 +36,8 @@ class FixHardsphereWall : public Fix {
   bool edge;
   double pos;
   std::vector<std::string> coeffs;    // own law coefficients (empty: the pair style's I,I)
+  double temperature;                 // thermal wall temperature (< 0: not thermal)
+  long seed;
 };
 
 }    // namespace LAMMPS_NS

@@ -281,6 +281,52 @@ TEST(EventDriven, WallsEqualReferenceAndHold)
     }
 }
 
+// a thermal wall brings an elastic rough gas to its temperature, translational and rotational
+// (detailed balance of the flux Maxwellian); the opposite wall is elastic
+TEST(EventDriven, ThermalWallEquilibratesTheGas)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = dim == 2 ? 300 : 400;
+    s.dim = dim;
+    s.phi = 0.1;
+    s.seed = 5 + dim;
+    s.q = dim == 2 ? 0.5 : 0.4;
+    Reference ref = make_system(s, LawParams::rough(1.0, 1.0));
+    ref.periodic[1] = false;
+    ref.walls.push_back({1, -1, ref.lo.y - 0.6, LawParams::rough(1.0, 1.0)});
+    ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, LawParams::rough(1.0, -1.0)});
+    CoreRun run(ref);
+    EDOptions o = run.ed.options();
+    o.walls[0].T = 2.0;
+    o.walls[0].seed = 99;
+    run.ed.configure(o, ref.ntypes, ref.laws);
+    run.ed.start();
+    const double Tw = 2.0;
+    double sum_tr = 0, sum_rot = 0;
+    int nsample = 0;
+    for (int w = 0; w < 400; w++) {
+      run.total.add(run.ed.advance_to(1.0));
+      run.ed.rebase(1.0);
+      if (w < 200) continue;
+      double etr = 0, erot = 0;
+      for (int i = 0; i < run.ed.size(); i++) {
+        const EDParticle &p = run.ed.particle(i);
+        const Vec3 v = run.ed.velocity(i, 0.0);
+        etr += 0.5 * p.m * norm2(v);
+        erot += 0.5 * p.q * p.m * p.a * p.a * norm2(p.w);
+      }
+      const int drot = dim == 2 ? 1 : 3;
+      sum_tr += 2.0 * etr / (dim * s.n);
+      sum_rot += 2.0 * erot / (drot * s.n);
+      nsample++;
+    }
+    EXPECT_GT(run.total.wall_collisions, 1000);
+    EXPECT_NEAR(sum_tr / nsample / Tw, 1.0, 0.05) << "T_tr in " << dim << "D";
+    EXPECT_NEAR(sum_rot / nsample / Tw, 1.0, 0.05) << "T_rot in " << dim << "D";
+  }
+}
+
 TEST(EventDriven, ElasticSmoothGasConservesEnergy)
 {
   SystemSpec s;

@@ -400,7 +400,11 @@ TEST_F(FixErrors, Wall)
   // (a fix whose constructor failed leaves its ID half-defined in LAMMPS: use fresh IDs)
   EXPECT_LMP_ERROR(l.get(), "fix w1 all hardsphere/wall ylo abc", "Expected floating point");
   EXPECT_LMP_ERROR(l.get(), "fix w2 all hardsphere/wall ylo EDGE spin 3",
-                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs\\)");
+                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal\\)");
+  EXPECT_LMP_ERROR(l.get(), "fix w8 all hardsphere/wall ylo EDGE thermal -1 5", "thermal T = -1 must be >= 0");
+  EXPECT_LMP_ERROR(l.get(), "fix w9 all hardsphere/wall ylo EDGE thermal 1 0", "thermal seed = 0 must be > 0");
+  EXPECT_LMP_ERROR(l.get(), "fix w10 all hardsphere/wall ylo EDGE thermal 1",
+                   "Illegal fix hardsphere/wall thermal T seed");
   EXPECT_LMP_ERROR(l.get(), "fix w3 all hardsphere/wall ylo EDGE coeffs",
                    "coeffs needs the law's coefficients");
   run(l.get(), "fix w4 all hardsphere/wall ylo EDGE coeffs 0.9");

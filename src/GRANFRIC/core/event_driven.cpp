@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace granfric {
@@ -301,6 +302,44 @@ void EventDriven::predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
   }
 }
 
+// counter-based uniform numbers in (0, 1) from a key
+static inline uint64_t mix64(uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t)
+{
+  const EDParticle &p = P[i];
+  uint64_t tbits;
+  std::memcpy(&tbits, &t, sizeof(tbits));
+  uint64_t key = mix64(mix64(w.seed) ^ (uint64_t) ext[i]) ^ tbits;
+  auto uniform = [&key]() {
+    key = mix64(key);
+    return ((key >> 11) + 0.5) * 0x1.0p-53;
+  };
+  auto gauss = [&]() { return std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * M_PI * uniform()); };
+  const double sv = std::sqrt(w.T / p.m), sw = std::sqrt(w.T / (p.q * p.m * p.a * p.a));
+  Collision c;
+  Vec3 v;
+  for (int d = 0; d < 3; d++)
+    if (d != w.dim && d < opt.dim) v[d] = sv * gauss();
+  v[w.dim] = n[w.dim] * sv * std::sqrt(-2.0 * std::log(uniform()));    // flux: v_n exp(-v_n^2/2)
+  Vec3 wv;
+  if (opt.dim == 2)
+    wv.z = sw * gauss();
+  else
+    wv = sw * Vec3(gauss(), gauss(), gauss());
+  c.v1 = v;
+  c.w1 = wv;
+  c.dE = 0.5 * p.m * (norm2(v) - norm2(p.v)) + 0.5 * p.q * p.m * p.a * p.a * (norm2(wv) - norm2(p.w));
+  c.gn = dot(p.v, n);
+  return c;
+}
+
 void EventDriven::collide_wall(int i)
 {
   EDParticle &p = P[i];
@@ -316,7 +355,12 @@ void EventDriven::collide_wall(int i)
     stats.tc_elastic++;
   }
   Body b{p.v, p.w, p.m, p.a, p.q};
-  const Collision c = collide(law, b, Body::wall(Vec3()), n);
+  Collision c;
+  if (w.T >= 0.0) {
+    c = thermal_reemission(w, i, n, t);
+  } else {
+    c = collide(law, b, Body::wall(Vec3()), n);
+  }
   p.v = c.v1;
   p.w = c.w1;
   p.t_last = t;

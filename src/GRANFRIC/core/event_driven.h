@@ -61,6 +61,11 @@ struct EDWall {
   int side = -1;
   double pos = 0.0;
   std::vector<LawParams> laws;    // by particle type (index 0 unused)
+  // thermal wall (T >= 0): a particle that hits it leaves with a velocity drawn from the
+  // Maxwellian flux at T (normal component Rayleigh, tangential Gaussian) and a spin drawn from
+  // the Maxwellian at T; random numbers from (seed, particle, collision time)
+  double T = -1.0;
+  uint64_t seed = 1;
 };
 
 struct EDOptions {
@@ -171,6 +176,7 @@ class EventDriven {
   void schedule(int i);                  // et, ekind from the candidates
   void predict_wall(int i, const Vec3 &xi, const Vec3 &vi);
   void collide_wall(int i);
+  Collision thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t);
   void collide_pair(int i);
   void cross(int i);
   void reschedule(int i) { queue.update(i, P[i].et); }
