@@ -111,8 +111,12 @@ void FixHardsphereED::init()
   if (igroup != 0)
     error->all(FLERR, "Fix hardsphere/ed must be applied to group all (it moves every atom)");
   if (domain->triclinic) error->all(FLERR, "Fix hardsphere/ed does not support triclinic boxes");
-  if (domain->box_change)
-    error->all(FLERR, "Fix hardsphere/ed does not support a box that changes during the run");
+  // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), but
+  // no fix may change the box (deform, barostats)
+  for (const auto &f : modify->get_fix_list())
+    if (f->box_change)
+      error->all(FLERR, "Fix hardsphere/ed does not support a box changed during the run (fix {} "
+                 "{})", f->id, f->style);
   // with run_style respa the window is the outermost step (collisions need no forces)
   nlevels_respa = 0;
   if (utils::strmatch(update->integrate_style, "^respa"))
