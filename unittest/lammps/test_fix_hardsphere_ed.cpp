@@ -254,6 +254,8 @@ TEST_F(FixErrors, Combinations)
   run(lmp.get(), "unfix g\ngroup half id <= 10\nunfix ed\nfix ed half hardsphere/ed");
   EXPECT_LMP_ERROR(lmp.get(), "run 0", "must be applied to group all");
   run(lmp.get(), "unfix ed\nfix ed all hardsphere/ed\nrun 0 post no");
+  run(lmp.get(), "fix d all deform 1 x scale 1.1");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "does not support a box changed during the run \\(fix d deform\\)");
 }
 
 TEST_F(FixErrors, RefusesOtherPairStyles)
