@@ -62,38 +62,11 @@ def test_mean_energy_changes_against_monte_carlo_through_the_cpp_law(dim, q, r, 
     """<dE_tr>, <dE_rot> per collision over Gaussian velocities and spins (weighted with the
     normal relative speed) through the C++ collision law, against the closed forms the theory
     is built from; within 4 standard errors."""
-    rng = np.random.default_rng(7 + dim)
-    Ttr, Trot, m, a = 1.0, 0.6, 1.0, 0.5
-    I = q * m * a * a
+    Ttr, Trot = 1.0, 0.6
     e = cooling.eta(beta, q)
-    samples = []
-    while len(samples) < 20000:
-        v1, v2 = rng.normal(0, math.sqrt(Ttr / m), 3), rng.normal(0, math.sqrt(Ttr / m), 3)
-        if dim == 2:
-            v1[2] = v2[2] = 0.0
-            w1 = np.array([0, 0, rng.normal(0, math.sqrt(Trot / I))])
-            w2 = np.array([0, 0, rng.normal(0, math.sqrt(Trot / I))])
-            th = rng.uniform(0, 2 * math.pi)
-            n = np.array([math.cos(th), math.sin(th), 0.0])
-        else:
-            w1, w2 = rng.normal(0, math.sqrt(Trot / I), 3), rng.normal(0, math.sqrt(Trot / I), 3)
-            n = rng.normal(size=3)
-            n /= np.linalg.norm(n)
-        gn = (v1 - v2) @ n
-        if gn >= 0:
-            continue
-        c = core.collide("rough", (r, beta), core.Body(tuple(v1), tuple(w1), m, a, q),
-                         core.Body(tuple(v2), tuple(w2), m, a, q), tuple(n))
-        dEtr = 0.5 * m * (c.v1 @ c.v1 + c.v2 @ c.v2 - v1 @ v1 - v2 @ v2)
-        dErot = 0.5 * I * (c.w1 @ c.w1 + c.w2 @ c.w2 - w1 @ w1 - w2 @ w2)
-        samples.append((-gn, dEtr, dErot))
-    s = np.array(samples)
-    w = s[:, 0] / s[:, 0].sum()
-    neff = 1.0 / np.sum(w * w)
+    mc = core.mean_energy_changes("rough", (r, beta), q, dim, Ttr, Trot, n=40000, seed=7 + dim)
     d = dim - 1
     th_tr = -(1 - r * r) * Ttr - 2 * d * e * (1 - e) * Ttr + 2 * d * e * e / q * Trot
     th_rot = 2 * d * (e * e / q * Ttr - e / q * (1 - e / q) * Trot)
-    for col, th in ((1, th_tr), (2, th_rot)):
-        mean = np.sum(w * s[:, col])
-        sem = math.sqrt(np.sum(w * (s[:, col] - mean) ** 2) / neff)
-        assert abs(mean - th) < 4 * sem, (col, mean, th, sem)
+    assert abs(mc["tr"] - th_tr) < 4 * mc["tr_se"], (mc, th_tr)
+    assert abs(mc["rot"] - th_rot) < 4 * mc["rot_se"], (mc, th_rot)

@@ -297,39 +297,11 @@ def test_model_E_coefficients_match_the_appendix():
 
 
 def _mc_energy_changes(r, rt, mu, q, Ttr, Trot, dim, n, seed):
-    """<dE_tr>, <dE_rot> per collision through the C++ Walton law: Gaussian velocities at T_tr,
-    Maxwellian spins at T_rot (2D: spin about z only), collisions weighted by |g_n|."""
-    rng = np.random.default_rng(seed)
-    m, a = 1.0, 0.5
-    I = q * m * a * a
-    samples = []
-    while len(samples) < n:
-        v1, v2 = rng.normal(0, math.sqrt(Ttr / m), 3), rng.normal(0, math.sqrt(Ttr / m), 3)
-        if dim == 2:
-            v1[2] = v2[2] = 0.0
-            w1 = np.array([0, 0, rng.normal(0, math.sqrt(Trot / I))])
-            w2 = np.array([0, 0, rng.normal(0, math.sqrt(Trot / I))])
-            th = rng.uniform(0, 2 * math.pi)
-            nn = np.array([math.cos(th), math.sin(th), 0.0])
-        else:
-            w1, w2 = rng.normal(0, math.sqrt(Trot / I), 3), rng.normal(0, math.sqrt(Trot / I), 3)
-            nn = rng.normal(size=3)
-            nn /= np.linalg.norm(nn)
-        gn = (v1 - v2) @ nn
-        if gn >= 0:
-            continue
-        c = core.collide("walton", (r, mu, rt), core.Body(tuple(v1), tuple(w1), m, a, q),
-                         core.Body(tuple(v2), tuple(w2), m, a, q), tuple(nn))
-        samples.append((-gn, 0.5 * m * (c.v1 @ c.v1 + c.v2 @ c.v2 - v1 @ v1 - v2 @ v2),
-                        0.5 * I * (c.w1 @ c.w1 + c.w2 @ c.w2 - w1 @ w1 - w2 @ w2)))
-    s = np.array(samples)
-    wgt = s[:, 0] / s[:, 0].sum()
-    neff = 1.0 / np.sum(wgt * wgt)
-    out = []
-    for col in (1, 2):
-        mean = np.sum(wgt * s[:, col])
-        out.append((mean, math.sqrt(np.sum(wgt * (s[:, col] - mean) ** 2) / neff)))
-    return out
+    """<dE_tr>, <dE_rot> per collision through the C++ Walton law (Monte Carlo in the core:
+    Gaussian velocities at T_tr, Maxwellian spins at T_rot, collisions weighted by |g_n|), as
+    ((mean, s.e.), (mean, s.e.))."""
+    mc = core.mean_energy_changes("walton", (r, mu, rt), q, dim, Ttr, Trot, n=n, seed=seed)
+    return [(mc["tr"], mc["tr_se"]), (mc["rot"], mc["rot_se"])]
 
 
 @pytest.mark.parametrize("dim,r,rt,mu,q,Ttr,Trot", [

@@ -20,6 +20,20 @@ static int make_law(int law, const double *c, LawParams &p)
   return p.check() ? -2 : 0;
 }
 
+// Monte Carlo mean energy changes per collision over Gaussian velocities (Ttr) and spins (Trot)
+// (energy_loss.h): out = {<dE_tr>, its s.e., <dE_rot>, its s.e., <dE>, its s.e., sliding}
+int granfric_mean_energy_changes(int law, const double *c, double q, int dim, double Ttr,
+                                 double Trot, long n, unsigned long seed, double *out)
+{
+  LawParams p;
+  const int rc = make_law(law, c, p);
+  if (rc) return rc;
+  const EnergyLossResult r = mean_energy_changes(p, q, dim, Ttr, Trot, n, seed);
+  const double v[7] = {r.mean_tr, r.stderr_tr, r.mean_rot, r.stderr_rot, r.mean, r.stderr_, r.sliding};
+  for (int k = 0; k < 7; k++) out[k] = v[k];
+  return 0;
+}
+
 // Monte Carlo <dE> per collision of equal particles over a Maxwellian at T0 (energy_loss.h):
 // out = {mean, standard error, sliding fraction}
 int granfric_mean_energy_loss(int law, const double *c, double q, int dim, double T0, long n,

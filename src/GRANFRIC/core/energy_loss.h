@@ -13,14 +13,24 @@
 namespace granfric {
 
 struct EnergyLossResult {
-  double mean = 0.0;       // <dE> per collision (m = 1, T0 as given)
-  double stderr_ = 0.0;    // its standard error (weighted samples)
+  double mean = 0.0;       // <dE> per collision (m = 1)
+  double stderr_ = 0.0;    // its standard error (ratio estimator of the weighted mean)
+  double mean_tr = 0.0, stderr_tr = 0.0;      // translational part
+  double mean_rot = 0.0, stderr_rot = 0.0;    // rotational part
   double sliding = 0.0;    // weighted fraction of sliding collisions
   long samples = 0;        // approaching pairs used
 };
 
-EnergyLossResult mean_energy_loss(const LawParams &law, double q, int dim, double T0, long n,
-                                  uint64_t seed);
+// velocities Gaussian at Ttr per component, spins with I <w^2> = Trot per spin component
+EnergyLossResult mean_energy_changes(const LawParams &law, double q, int dim, double Ttr,
+                                     double Trot, long n, uint64_t seed);
+
+// Risso's convention: one temperature T0 for both
+inline EnergyLossResult mean_energy_loss(const LawParams &law, double q, int dim, double T0,
+                                         long n, uint64_t seed)
+{
+  return mean_energy_changes(law, q, dim, T0, T0, n, seed);
+}
 
 }    // namespace granfric
 
