@@ -4,13 +4,12 @@ model E (granfric.meanfield) in the steady state.
 
     PYTHONPATH=tools /usr/bin/python3 -m granfric.herbst [--quick|--full] [--out DIR]
 """
-import argparse
 import math
 import os
 
 import numpy as np
 
-from . import cooling, lammpslog, lmp
+from . import cli, cooling, lammpslog, lmp
 
 EXAMPLE = os.path.join(lmp.ROOT, "examples", "driven")
 Q = 0.4
@@ -55,21 +54,11 @@ CASES_FULL = [(r, mu, rt, phi) for phi in (0.0866, 0.34) for r in (0.95, 0.99) f
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", default="out/herbst2005")
-    g = ap.add_mutually_exclusive_group()
-    g.add_argument("--quick", action="store_true", help="4 dilute cases, N = 4096 (default)")
-    g.add_argument("--full", action="store_true", help="mu scans at the paper's fractions")
-    a = ap.parse_args(argv)
-    os.makedirs(a.out, exist_ok=True)
+    a = cli.scene_args(argv, __doc__, "out/herbst2005", "4 dilute cases, N = 4096 (default)", "mu scans at the paper's fractions")
     cases = CASES_FULL if a.full else CASES_QUICK
-    try:
-        from tqdm import tqdm
-    except ImportError:
-        tqdm = lambda x, **k: x
     rows = []
     nside, fdr, vdr, tend = 64, 2.0, 0.1, 600.0
-    for r, mu, rt, phi in tqdm(cases, desc="driven runs"):
+    for r, mu, rt, phi in cli.progress(cases, "driven runs"):
         log = os.path.join(a.out, f"log.driven_r{r}_mu{mu}_rt{rt}_phi{phi}")
         d = simulate(r, "inf" if mu == math.inf else mu, rt, phi, tend, log, nside=nside, fdr=fdr, vdr=vdr)
         s = steady(d)

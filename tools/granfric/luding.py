@@ -8,13 +8,12 @@ Agreement is measured up to the onset of clustering, detected independently of t
 fraction of translational energy carried by the coarse-grained flow field (compute
 temp/profile) exceeds FLOW_ONSET.
 """
-import argparse
 import math
 import os
 
 import numpy as np
 
-from . import cooling, lammpslog, lmp
+from . import cli, cooling, lammpslog, lmp
 
 EXAMPLE = os.path.join(lmp.ROOT, "examples", "cooling")
 FLOW_ONSET = 0.02    # 2 % of E_tr in the 8x8 (4x4x4) flow field: clustering/vortices set in
@@ -62,20 +61,10 @@ CASES_FULL = [(2, 0.9, b, 0.05) for b in (-1.0, -0.5, 0.0, 0.5, 1.0)] + \
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", default="out/luding1998")
-    g = ap.add_mutually_exclusive_group()
-    g.add_argument("--quick", action="store_true", help="4 cases, t <= 400 (default)")
-    g.add_argument("--full", action="store_true", help="beta scan in 2D and 3D, t <= 2000")
-    a = ap.parse_args(argv)
-    os.makedirs(a.out, exist_ok=True)
+    a = cli.scene_args(argv, __doc__, "out/luding1998", "4 cases, t <= 400 (default)", "beta scan in 2D and 3D, t <= 2000")
     cases, tend = (CASES_FULL, 2000.0) if a.full else (CASES_QUICK, 400.0)
-    try:
-        from tqdm import tqdm
-    except ImportError:
-        tqdm = lambda x, **k: x
     results = []
-    for dim, r, beta, phi in tqdm(cases, desc="cooling runs"):
+    for dim, r, beta, phi in cli.progress(cases, "cooling runs"):
         log = os.path.join(a.out, f"log.cool{dim}d_r{r}_b{beta}_phi{phi}")
         d = simulate(dim, r, beta, phi, tend, log)
         results.append(((dim, r, beta, phi), d, compare(d, dim, r, beta, phi)))

@@ -7,12 +7,11 @@ which are not available yet.
 
     PYTHONPATH=tools /usr/bin/python3 -m granfric.risso [--quick|--full] [--out DIR]
 """
-import argparse
 import os
 
 import numpy as np
 
-from . import energyloss, lammpslog, lmp
+from . import cli, energyloss, lammpslog, lmp
 
 COMPACTION = os.path.join(lmp.ROOT, "examples", "compaction", "in.compaction")
 
@@ -29,13 +28,7 @@ def compaction(kappa, out, tend=20000.0, seed=4321):
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--out", default="out/risso2005")
-    g = ap.add_mutually_exclusive_group()
-    g.add_argument("--quick", action="store_true")
-    g.add_argument("--full", action="store_true")
-    a = ap.parse_args(argv)
-    os.makedirs(a.out, exist_ok=True)
+    a = cli.scene_args(argv, __doc__, "out/risso2005", "coarse map, 5 kappas for Fig. 2 (default)", "fine map, 10 kappas")
     nk, nq, nmc = (60, 41, 200000) if a.full else (30, 21, 40000)
     kappas = np.exp(np.linspace(np.log(1e-3), np.log(10.0), nk))
     qs = np.linspace(0.0, 0.2, nq)
