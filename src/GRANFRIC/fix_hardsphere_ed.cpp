@@ -297,6 +297,7 @@ void FixHardsphereED::initial_integrate(int)
   }
   if (reuse) {
     ed.rebase(prev_dt);
+    ed.set_clock(t0);
   } else {
     configure_core();
     const double q = pair->shape_factor();
@@ -315,6 +316,7 @@ void FixHardsphereED::initial_integrate(int)
       p.t_last = b[13];
       prev_tags[s] = order[s].first;
     }
+    ed.set_clock(t0);
     ed.start();
     offset.assign((size_t) ntotal * 3, 0);
     totals[QUEUE_REBUILDS] += 1.0;
@@ -421,6 +423,7 @@ void FixHardsphereED::initial_integrate(int)
   totals[INJECTED] += last.injected * force->mvv2e;
   totals[WALL_COLLISIONS] += (double) last.wall_collisions;
   totals[DISSIPATED] -= last.dE_wall * force->mvv2e;
+  totals[WALL_ENERGY] += last.dE_wall * force->mvv2e;
 }
 
 double FixHardsphereED::compute_vector(int n)

@@ -31,7 +31,7 @@ class FixHardsphereED : public Fix {
   // QUEUE_REBUILDS: the fix's own neighbour structure (cell grid and every prediction) rebuilt
   // from scratch, because something outside the fix changed the atoms or a new run began
   enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, QUEUE_REBUILDS,
-         TC_ELASTIC, ENERGY_CREATING, INJECTED, WALL_COLLISIONS, NVECTOR };
+         TC_ELASTIC, ENERGY_CREATING, INJECTED, WALL_COLLISIONS, WALL_ENERGY, NVECTOR };
 
   FixHardsphereED(class LAMMPS *, int, char **);
   ~FixHardsphereED() override;

@@ -10,13 +10,15 @@
 #include "force.h"
 #include "modify.h"
 #include "pair_hardsphere.h"
+#include "update.h"
 
 #include <cstring>
 
 using namespace LAMMPS_NS;
 
 FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), dim(1), side(-1), edge(false), pos(0.0), temperature(-1.0), seed(1)
+    Fix(lmp, narg, arg), dim(1), side(-1), edge(false), pos(0.0), temperature(-1.0), seed(1),
+    amplitude(0.0), omega(0.0)
 {
   if (narg < 5) utils::missing_cmd_args(FLERR, "fix hardsphere/wall face pos", error);
   const std::string face = arg[3];
@@ -47,6 +49,22 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
       if (coeffs.empty())
         error->all(FLERR, "Fix hardsphere/wall coeffs needs the law's coefficients, as pair_coeff "
                    "takes them");
+    } else if (strcmp(arg[iarg], "vibrate") == 0) {
+      if (iarg + 4 > narg)
+        utils::missing_cmd_args(FLERR, "fix hardsphere/wall vibrate parabolic A omega", error);
+      if (strcmp(arg[iarg + 1], "parabolic") != 0)
+        error->all(FLERR, "Fix hardsphere/wall vibrate {} is not available (allowed: parabolic)",
+                   arg[iarg + 1]);
+      amplitude = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      omega = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+      if (!(amplitude > 0.0))
+        error->all(FLERR, "Fix hardsphere/wall vibrate amplitude A = {} must be > 0", amplitude);
+      if (!(omega > 0.0))
+        error->all(FLERR, "Fix hardsphere/wall vibrate angular frequency = {} must be > 0", omega);
+      if (side > 0)
+        error->all(FLERR, "Fix hardsphere/wall vibrate is available for lower walls (xlo, ylo, "
+                   "zlo) only");
+      iarg += 4;
     } else if (strcmp(arg[iarg], "thermal") == 0) {
       if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/wall thermal T seed", error);
       temperature = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
@@ -56,10 +74,16 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
       if (seed <= 0) error->all(FLERR, "Fix hardsphere/wall thermal seed = {} must be > 0", seed);
       iarg += 3;
     } else {
-      error->all(FLERR, "Unknown fix hardsphere/wall keyword: {} (allowed: coeffs, thermal)",
-                 arg[iarg]);
+      error->all(FLERR, "Unknown fix hardsphere/wall keyword: {} (allowed: coeffs, thermal, "
+                 "vibrate)", arg[iarg]);
     }
   }
+  if (amplitude > 0.0 && temperature >= 0.0)
+    error->all(FLERR, "Fix hardsphere/wall: a thermal wall cannot vibrate");
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extvector = 0;
 }
 
 int FixHardsphereWall::setmask()
@@ -101,6 +125,8 @@ granfric::EDWall FixHardsphereWall::wall() const
   // a thermal wall draws velocities at T (energy units) from the Maxwellian of m v^2 / 2
   if (temperature >= 0.0) w.T = temperature * force->boltz / force->mvv2e;
   w.seed = (uint64_t) seed;
+  w.A = amplitude;
+  w.omega = omega;
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   const int nt = atom->ntypes;
   w.laws.resize(nt + 1);
@@ -114,4 +140,14 @@ granfric::EDWall FixHardsphereWall::wall() const
     for (int t = 1; t <= nt; t++) w.laws[t] = law;
   }
   return w;
+}
+
+// the wall's position and velocity now
+double FixHardsphereWall::compute_vector(int n)
+{
+  const granfric::EDWall w = wall();
+  double p, v, a;
+  const double t = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+  w.motion(t, p, v, a);
+  return n == 0 ? p : v;
 }

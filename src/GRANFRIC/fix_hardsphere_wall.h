@@ -1,7 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    GRANFRIC: plane walls.
 
-   fix ID group hardsphere/wall face pos [coeffs c1 c2 ...] [thermal T seed]
+   fix ID group hardsphere/wall face pos [coeffs c1 ...] [thermal T seed]
+                                          [vibrate parabolic A omega]
 
    A static plane wall for fix hardsphere/ed: face xlo|xhi|ylo|yhi|zlo|zhi in a non-periodic
    dimension, at position pos (a number or EDGE = the box boundary). Collisions with it are
@@ -30,6 +31,7 @@ class FixHardsphereWall : public Fix {
   // the wall for the core, at the current box (after init(), which validates the coefficients)
   granfric::EDWall wall() const;
   int dimension() const { return dim; }
+  double compute_vector(int) override;
 
  private:
   int dim, side;
@@ -38,6 +40,7 @@ class FixHardsphereWall : public Fix {
   std::vector<std::string> coeffs;    // own law coefficients (empty: the pair style's I,I)
   double temperature;                 // thermal wall temperature (< 0: not thermal)
   long seed;
+  double amplitude, omega;            // vibration (piecewise parabolic), 0: static
 };
 
 }    // namespace LAMMPS_NS

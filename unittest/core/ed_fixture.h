@@ -93,6 +93,8 @@ struct CoreRun {
       e.side = w.side;
       e.pos = w.pos;
       e.laws.assign(ref.ntypes + 1, w.law);
+      e.A = w.A;
+      e.omega = w.omega;
       o.walls.push_back(e);
     }
     ed.configure(o, ref.ntypes, ref.laws);

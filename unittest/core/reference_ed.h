@@ -33,6 +33,26 @@ struct RefWall {
   int dim = 1, side = -1;
   double pos = 0.0;
   LawParams law;
+  double A = 0.0, omega = 0.0;    // vibrating lower wall: piecewise-parabolic sinusoid mimic
+  // the motion, written here independently of the core: on half period k (length pi/omega) the
+  // wall rises and falls back (k even) or dips and comes back (k odd) with constant |acceleration|
+  // 8 A omega^2 / pi^2, reaching pos +- A at mid-period
+  double height(double s) const
+  {
+    if (A == 0.0) return pos;
+    const double H = M_PI / omega, acc = 8 * A * omega * omega / (M_PI * M_PI);
+    const double k = std::floor(s / H), u = s - k * H;
+    const double up = ((long long) k % 2 == 0) ? 1.0 : -1.0;
+    return pos + up * 0.5 * acc * u * (H - u);
+  }
+  double speed(double s) const
+  {
+    if (A == 0.0) return 0.0;
+    const double H = M_PI / omega, acc = 8 * A * omega * omega / (M_PI * M_PI);
+    const double k = std::floor(s / H), u = s - k * H;
+    const double up = ((long long) k % 2 == 0) ? 1.0 : -1.0;
+    return up * acc * (0.5 * H - u);
+  }
 };
 
 struct Reference {
@@ -95,8 +115,35 @@ struct Reference {
         for (int k = 0; k < (int) walls.size(); k++) {
           const RefWall &w = walls[k];
           const int d = w.dim;
-          const double tau = w.side < 0 ? crossing_time(xi[d], vi[d], gravity[d], w.pos + p[i].a, -1)
-                                        : crossing_time(xi[d], vi[d], gravity[d], w.pos - p[i].a, +1);
+          double tau;
+          if (w.A > 0.0) {
+            // brute force: march in steps of 1/400 period up to the best time found so far,
+            // then bisect the first downward zero of x - a - wall
+            auto gap = [&](double s) {
+              const double dt = s;
+              return xi[d] + vi[d] * dt + 0.5 * gravity[d] * dt * dt - p[i].a - w.height(time + s);
+            };
+            tau = NEVER;
+            const double h = 2 * M_PI / w.omega / 400;
+            double s0 = 0.0, f0 = gap(0.0);
+            for (double s1 = h; s0 < best; s1 += h) {
+              const double f1 = gap(s1);
+              if (f0 > 0.0 && f1 <= 0.0) {
+                double lo = s0, hi = s1;
+                for (int it = 0; it < 200 && hi - lo > 1e-15 * (1 + hi); it++) {
+                  const double mid = 0.5 * (lo + hi);
+                  (gap(mid) > 0.0 ? lo : hi) = mid;
+                }
+                tau = hi;
+                break;
+              }
+              s0 = s1;
+              f0 = f1;
+            }
+          } else {
+            tau = w.side < 0 ? crossing_time(xi[d], vi[d], gravity[d], w.pos + p[i].a, -1)
+                             : crossing_time(xi[d], vi[d], gravity[d], w.pos - p[i].a, +1);
+          }
           if (tau < best) {
             best = tau;
             bi = i;
@@ -154,7 +201,9 @@ struct Reference {
         LawParams law = w.law;
         const double sa = time - a.t_last;
         if (tc > 0 && sa >= 0 && sa < tc) law = law.elastic();
-        const Collision c = collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body::wall(Vec3()), nn);
+        Vec3 vwall;
+        vwall[w.dim] = w.speed(time);
+        const Collision c = collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body::wall(vwall), nn);
         a.v = c.v1;
         a.w = c.w1;
         a.t_last = time;

@@ -283,6 +283,46 @@ TEST(EventDriven, WallsEqualReferenceAndHold)
 
 // a thermal wall brings an elastic rough gas to its temperature, translational and rotational
 // (detailed balance of the flux Maxwellian); the opposite wall is elastic
+// a bed on a vibrating base (piecewise-parabolic motion) under gravity: event by event equal to
+// the reference (which finds wall contacts by brute-force marching and bisection), the base
+// injects energy, nobody goes through it
+TEST(EventDriven, VibratingBaseEqualsReference)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = 60;
+    s.dim = dim;
+    s.phi = 0.15;
+    s.seed = 13 + dim;
+    Reference ref = make_system(s, LawParams::walton(0.9, 0.3, 0.4));
+    ref.periodic[1] = false;
+    ref.gravity = dim == 2 ? Vec3(0.0, -1.0, 0.0) : Vec3(0.0, -1.0, 0.0);
+    RefWall base{1, -1, ref.lo.y - 0.8, LawParams::walton(0.8, 0.5, 0.2), 0.3, 6.0};
+    ref.walls.push_back(base);
+    ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.8, law_of(0)});
+    CoreRun run(ref);
+    run.ed.start();
+    const double dt = 0.13;
+    const int nwin = 25;
+    for (int w = 0; w < nwin; w++) {
+      run.total.add(run.ed.advance_to(dt));
+      run.ed.rebase(dt);
+      for (int i = 0; i < run.ed.size(); i++) {
+        const double y = run.ed.position(i, 0.0).y, a = run.ed.particle(i).a;
+        ASSERT_GE(y - a, base.height(run.ed.get_clock()) - 1e-9) << "through the vibrating base";
+      }
+    }
+    ref.run_until(nwin * dt);
+    EXPECT_GT(run.total.wall_collisions, 20);
+    EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    for (size_t i = 0; i < ref.p.size(); i++) {
+      EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+      EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+    }
+  }
+}
+
 TEST(EventDriven, ThermalWallEquilibratesTheGas)
 {
   for (int dim = 2; dim <= 3; dim++) {

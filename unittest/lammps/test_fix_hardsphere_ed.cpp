@@ -385,6 +385,34 @@ TEST(FixHardsphereWall, BouncingBallCollapseAndTC)
   EXPECT_LT(l2->atom->x[0][1], 0.5 + 0.05 * 0.05 / 8 + 1e-9);
 }
 
+// a vibrating base (piecewise parabolic) under an elastic bed: it injects energy, and no
+// particle ever gets below it
+TEST(FixHardsphereWall, VibratingBaseInjectsEnergy)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\nboundary p m p\ncomm_modify vel yes\n"
+                 "region box block 0 20 0 20 -0.5 0.5\ncreate_box 1 box\n"
+                 "region inner block EDGE EDGE 1.0 19 EDGE EDGE\n"
+                 "create_atoms 1 random 80 17 inner overlap 1.05 maxtry 1000\n"
+                 "set type 1 diameter 1.0\nset type 1 mass 1.0\n"
+                 "velocity all create 0.01 5 loop geom mom yes dist gaussian\n"
+                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
+                 "fix ed all hardsphere/ed gravity 0 -1 0 tc 1e-4\n"
+                 "fix base all hardsphere/wall ylo EDGE vibrate parabolic 0.1 10.0\n"
+                 "timestep 0.05\nthermo 0");
+  auto *base = lmp->modify->get_fix_by_id("base");
+  for (int s = 0; s < 200; s++) {
+    run(lmp.get(), "run 1 post no");
+    const double floor = base->compute_vector(0);
+    EXPECT_LE(std::fabs(floor), 0.1 + 1e-12);
+    for (int i = 0; i < lmp->atom->nlocal; i++)
+      ASSERT_GE(lmp->atom->x[i][1] - lmp->atom->radius[i], floor - 1e-9) << "below the base";
+  }
+  auto *ed = lmp->modify->get_fix_by_id("ed");
+  EXPECT_GT(ed->compute_vector(9), 100.0) << "wall collisions";
+  EXPECT_GT(ed->compute_vector(10), 0.0) << "energy injected by the base";
+}
+
 TEST_F(FixErrors, Wall)
 {
   run(lmp.get(), "fix ed all hardsphere/ed");
@@ -402,8 +430,20 @@ TEST_F(FixErrors, Wall)
   // (a fix whose constructor failed leaves its ID half-defined in LAMMPS: use fresh IDs)
   EXPECT_LMP_ERROR(l.get(), "fix w1 all hardsphere/wall ylo abc", "Expected floating point");
   EXPECT_LMP_ERROR(l.get(), "fix w2 all hardsphere/wall ylo EDGE spin 3",
-                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal\\)");
+                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal, vibrate\\)");
   EXPECT_LMP_ERROR(l.get(), "fix w8 all hardsphere/wall ylo EDGE thermal -1 5", "thermal T = -1 must be >= 0");
+  EXPECT_LMP_ERROR(l.get(), "fix w11 all hardsphere/wall ylo EDGE vibrate sine 0.1 10",
+                   "vibrate sine is not available \\(allowed: parabolic\\)");
+  EXPECT_LMP_ERROR(l.get(), "fix w12 all hardsphere/wall ylo EDGE vibrate parabolic 0 10",
+                   "amplitude A = 0 must be > 0");
+  EXPECT_LMP_ERROR(l.get(), "fix w13 all hardsphere/wall ylo EDGE vibrate parabolic 0.1 -1",
+                   "angular frequency = -1 must be > 0");
+  EXPECT_LMP_ERROR(l.get(), "fix w14 all hardsphere/wall yhi EDGE vibrate parabolic 0.1 10",
+                   "for lower walls \\(xlo, ylo, zlo\\) only");
+  EXPECT_LMP_ERROR(l.get(), "fix w15 all hardsphere/wall ylo EDGE vibrate parabolic 0.1",
+                   "Illegal fix hardsphere/wall vibrate parabolic A omega");
+  EXPECT_LMP_ERROR(l.get(), "fix w16 all hardsphere/wall ylo EDGE vibrate parabolic 0.1 10 thermal 1 5",
+                   "a thermal wall cannot vibrate");
   EXPECT_LMP_ERROR(l.get(), "fix w9 all hardsphere/wall ylo EDGE thermal 1 0", "thermal seed = 0 must be > 0");
   EXPECT_LMP_ERROR(l.get(), "fix w10 all hardsphere/wall ylo EDGE thermal 1",
                    "Illegal fix hardsphere/wall thermal T seed");

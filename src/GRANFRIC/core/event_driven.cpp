@@ -285,6 +285,55 @@ void EventDriven::schedule(int i)
 }
 
 // next contact of the particle's surface with a wall, moving toward it
+void EDWall::motion(double s, double &w, double &vw, double &aw) const
+{
+  if (!vibrating()) {
+    w = pos;
+    vw = aw = 0.0;
+    return;
+  }
+  const double H = M_PI / omega, a = 8.0 * A * omega * omega / (M_PI * M_PI), v0 = 0.5 * a * H;
+  const double k = std::floor(s / H), u = s - k * H;
+  const bool up = std::fmod(k, 2.0) == 0.0 || std::fmod(k, 2.0) == -0.0;
+  const double sg = up ? 1.0 : -1.0;
+  w = pos + sg * (v0 * u - 0.5 * a * u * u);
+  vw = sg * (v0 - a * u);
+  aw = -sg * a;
+}
+
+// first contact, at window time >= now, of particle i (state xi, vi now) with a vibrating lower
+// wall: on each half period the relative motion is a parabola, solved exactly
+static double vibrating_contact(const EDWall &w, double clock, double now, double x, double v,
+                                double g, double a)
+{
+  const double H = M_PI / w.omega, vmax = 0.5 * 8.0 * w.A * w.omega * w.omega / (M_PI * M_PI) * H;
+  // past this time no contact is possible: the particle is for ever above the wall's highest
+  // point (upward flight without gravity) or has gone below its lowest (then it hit before)
+  double horizon;
+  if (g < 0.0) {
+    horizon = crossing_time(x, v, g, w.pos - w.A + a, -1);
+  } else {
+    if (v >= vmax && x - a > w.pos + w.A) return NEVER;
+    horizon = crossing_time(x, v, g, w.pos + w.A + a, +1);
+    if (horizon == NEVER && v < 0.0) horizon = crossing_time(x, v, g, w.pos - w.A + a, -1);
+  }
+  double t = now;
+  for (long iter = 0; iter < 100000000L; iter++) {
+    const double s = clock + t;
+    const double k = std::floor(s / H);
+    const double tend = (k + 1.0) * H - clock;
+    double ww, vw, aw;
+    w.motion(s, ww, vw, aw);
+    const double dt = t - now;
+    const double xp = x + v * dt + 0.5 * g * dt * dt, vp = v + g * dt;
+    const double tau = crossing_time(xp - a - ww, vp - vw, g - aw, 0.0, -1);
+    if (tau < NEVER && t + tau <= tend) return t + tau;
+    if (horizon < NEVER && tend > now + horizon + H) return NEVER;
+    t = tend > t ? tend : std::nextafter(t, NEVER);
+  }
+  return NEVER;
+}
+
 void EventDriven::predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
 {
   EDParticle &p = P[i];
@@ -293,10 +342,14 @@ void EventDriven::predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
   for (int k = 0; k < (int) opt.walls.size(); k++) {
     const EDWall &w = opt.walls[k];
     const int d = w.dim;
-    const double t = w.side < 0 ? crossing_time(xi[d], vi[d], opt.gravity[d], w.pos + p.a, -1)
-                                : crossing_time(xi[d], vi[d], opt.gravity[d], w.pos - p.a, +1);
-    if (now + t < p.wt) {
-      p.wt = now + t;
+    double t;
+    if (w.vibrating())
+      t = vibrating_contact(w, clock, now, xi[d], vi[d], opt.gravity[d], p.a);
+    else
+      t = now + (w.side < 0 ? crossing_time(xi[d], vi[d], opt.gravity[d], w.pos + p.a, -1)
+                            : crossing_time(xi[d], vi[d], opt.gravity[d], w.pos - p.a, +1));
+    if (t < p.wt) {
+      p.wt = t;
       p.wall = k;
     }
   }
@@ -355,12 +408,21 @@ void EventDriven::collide_wall(int i)
     stats.tc_elastic++;
   }
   Body b{p.v, p.w, p.m, p.a, p.q};
-  Collision c;
+  Collision c;    // (its dE is set below for moving walls)
   if (w.T >= 0.0) {
     c = thermal_reemission(w, i, n, t);
   } else {
-    c = collide(law, b, Body::wall(Vec3()), n);
+    double ww, vw, aw;
+    w.motion(clock + t, ww, vw, aw);
+    Vec3 vwall;
+    vwall[w.dim] = vw;
+    c = collide(law, b, Body::wall(vwall), n);
   }
+  // kinetic energy change in the lab frame: a moving wall does work on the particle, so this is
+  // not the law's dissipation (equal to it for a wall at rest)
+  const double dE = 0.5 * p.m * (norm2(c.v1) - norm2(p.v)) +
+      0.5 * p.q * p.m * p.a * p.a * (norm2(c.w1) - norm2(p.w));
+  c.dE = w.vibrating() ? dE : c.dE;
   p.v = c.v1;
   p.w = c.w1;
   p.t_last = t;
@@ -600,6 +662,7 @@ void EventDriven::rebase(double dt)
   }
   queue.shift(dt);
   now -= dt;
+  clock += dt;
 }
 
 EDStats EventDriven::run(double t_end)

@@ -66,6 +66,13 @@ struct EDWall {
   // the Maxwellian at T; random numbers from (seed, particle, collision time)
   double T = -1.0;
   uint64_t seed = 1;
+  // vibration of a lower wall (side -1): piecewise constant acceleration that mimics
+  // pos + A sin(omega t) (Risso et al. ref. 13): acceleration -aw on the half periods where the
+  // sinusoid is positive, +aw on the others, aw = 8 A omega^2 / pi^2 (same amplitude, period)
+  double A = 0.0, omega = 0.0;
+  bool vibrating() const { return A > 0.0 && omega > 0.0; }
+  // position, velocity and acceleration at absolute time s
+  void motion(double s, double &w, double &vw, double &aw) const;
 };
 
 struct EDOptions {
@@ -138,6 +145,10 @@ class EventDriven {
   // kinetic energy change is booked as injected, and every prediction is made afresh.
   void set_global_events(const std::vector<double> &times, std::function<void(int)> apply);
 
+  // absolute time of window time 0 (the phase of vibrating walls); rebase() advances it
+  void set_clock(double t) { clock = t; }
+  double get_clock() const { return clock; }
+
   // state of particle e (external index) at window time t (lazy update, not stored)
   Vec3 position(int e, double t) const { return pos(loc[e], t); }
   Vec3 velocity(int e, double t) const { return vel(loc[e], t); }
@@ -146,6 +157,7 @@ class EventDriven {
   std::vector<EDParticle> P;             // internal order
   std::vector<int> ext, loc;             // internal -> external index, and back
   long crossings_since_reorder = 0;
+  double clock = 0.0;
   std::vector<double> gtimes;            // pending global events
   std::function<void(int)> gapply;
   void global_event(int k);
