@@ -86,6 +86,13 @@ FixHardsphereED::~FixHardsphereED()
   memory->destroy(tlast);
 }
 
+void FixHardsphereED::require(LAMMPS *lmp, const char *style, const char *id, const char *what)
+{
+  for (const auto &f : lmp->modify->get_fix_list())
+    if (dynamic_cast<FixHardsphereED *>(f)) return;
+  lmp->error->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
+}
+
 int FixHardsphereED::setmask()
 {
   return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA;

@@ -34,6 +34,8 @@ class FixHardsphereED : public Fix {
          TC_ELASTIC, ENERGY_CREATING, INJECTED, WALL_COLLISIONS, WALL_ENERGY, NVECTOR };
 
   FixHardsphereED(class LAMMPS *, int, char **);
+  // error unless a fix hardsphere/ed exists: the styles it calls from its window (kicks, walls)
+  static void require(class LAMMPS *lmp, const char *style, const char *id, const char *what);
   ~FixHardsphereED() override;
   int setmask() override;
   void init() override;

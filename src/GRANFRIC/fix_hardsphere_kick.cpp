@@ -4,6 +4,8 @@
 
 #include "fix_hardsphere_kick.h"
 
+#include "fix_hardsphere_ed.h"
+
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -57,12 +59,7 @@ int FixHardsphereKick::setmask()
 
 void FixHardsphereKick::init()
 {
-  bool ed = false;
-  for (const auto &f : modify->get_fix_list())
-    if (utils::strmatch(f->style, "^hardsphere/ed")) ed = true;
-  if (!ed)
-    error->all(FLERR, "Fix hardsphere/kick {} needs fix hardsphere/ed, which applies the kicks "
-               "at their times inside each step", id);
+  FixHardsphereED::require(lmp, style, id, "applies the kicks at their times inside each step");
   // the first kick of a new run is the first kick time at or after the current time
   if (!started) {
     const double now = update->atime + (update->ntimestep - update->atimestep) * update->dt;

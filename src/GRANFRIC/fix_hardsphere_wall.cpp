@@ -4,6 +4,8 @@
 
 #include "fix_hardsphere_wall.h"
 
+#include "fix_hardsphere_ed.h"
+
 #include "atom.h"
 #include "domain.h"
 #include "error.h"
@@ -93,12 +95,7 @@ int FixHardsphereWall::setmask()
 
 void FixHardsphereWall::init()
 {
-  bool ed = false;
-  for (const auto &f : modify->get_fix_list())
-    if (utils::strmatch(f->style, "^hardsphere/ed")) ed = true;
-  if (!ed)
-    error->all(FLERR, "Fix hardsphere/wall {} needs fix hardsphere/ed, which processes the "
-               "collisions with it", id);
+  FixHardsphereED::require(lmp, style, id, "processes the collisions with it");
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   if (!pair) error->all(FLERR, "Fix hardsphere/wall {} needs a hardsphere pair style", id);
   if (!coeffs.empty() && (int) coeffs.size() != pair->ncoeff())
