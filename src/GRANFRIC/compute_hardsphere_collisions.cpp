@@ -36,13 +36,13 @@ ComputeHardsphereCollisions::ComputeHardsphereCollisions(LAMMPS *lmp, int narg, 
                  arg[iarg]);
   }
   vector_flag = 1;
-  size_vector = 5;
+  size_vector = 7;
   extvector = 0;
   array_flag = 1;
   size_array_rows = nbins;
   size_array_cols = 2;
   extarray = 0;
-  vector = new double[5]{0, 0, 0, 0, 0};
+  vector = new double[7]{0, 0, 0, 0, 0, 0, 0};
   memory->create(array, nbins, 2, "hardsphere/collisions:array");
   for (int k = 0; k < nbins; k++) {
     array[k][0] = 0.5 * M_PI + (k + 0.5) * 0.5 * M_PI / nbins;
@@ -85,6 +85,9 @@ void ComputeHardsphereCollisions::update_window()
   vector[2] = ncoll > 0 ? double(now.sliding - seen.sliding) / ncoll : 0.0;
   vector[3] = (double) ncoll;
   vector[4] = dt;
+  const long nwall = now.wall_collisions - seen.wall_collisions;
+  vector[5] = nwall > 0 ? (now.dE_wall - seen.dE_wall) * force->mvv2e / nwall : 0.0;
+  vector[6] = (double) nwall;
   const double width = 0.5 * M_PI / nbins;
   for (int k = 0; k < nbins; k++) {
     const long c = (k < (int) now.gamma_hist.size() ? now.gamma_hist[k] : 0) -

@@ -2,8 +2,9 @@
    GRANFRIC: compute ID group hardsphere/collisions fixID [bins N]
    Statistics of the collisions processed by fix hardsphere/ed fixID over a window (the time
    since this compute was last invoked, or since the run began):
-   vector: 1 collision frequency per particle, 2 <dE> per collision, 3 sliding fraction,
-           4 collisions in the window, 5 window length
+   vector: 1 collision frequency per particle, 2 <dE> per particle-particle collision,
+           3 sliding fraction, 4 particle-particle collisions in the window, 5 window length,
+           6 <dE> per particle-wall collision (lab frame), 7 particle-wall collisions
    array (N x 2): impact angle gamma at the bin centre, probability density P(gamma)
 ------------------------------------------------------------------------- */
 

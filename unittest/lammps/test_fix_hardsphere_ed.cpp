@@ -411,6 +411,14 @@ TEST(FixHardsphereWall, VibratingBaseInjectsEnergy)
   auto *ed = lmp->modify->get_fix_by_id("ed");
   EXPECT_GT(ed->compute_vector(9), 100.0) << "wall collisions";
   EXPECT_GT(ed->compute_vector(10), 0.0) << "energy injected by the base";
+  // compute hardsphere/collisions books pair and wall collisions apart
+  run(lmp.get(), "compute c all hardsphere/collisions ed\nthermo_style custom step c_c[2] c_c[6]\n"
+                 "run 100 post no");
+  auto *c = lmp->modify->get_compute_by_id("c");
+  c->compute_vector();
+  EXPECT_GT(c->vector[6], 10.0) << "wall collisions in the window";
+  EXPECT_GT(c->vector[5], 0.0) << "the base injects energy per wall collision";
+  EXPECT_EQ(c->vector[1], 0.0) << "elastic pair collisions lose nothing";
 }
 
 TEST_F(FixErrors, Wall)
