@@ -20,7 +20,7 @@ using namespace LAMMPS_NS;
 
 FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), dim(1), side(-1), edge(false), pos(0.0), temperature(-1.0), seed(1),
-    amplitude(0.0), omega(0.0)
+    amplitude(0.0), omega(0.0), sine(false)
 {
   if (narg < 5) utils::missing_cmd_args(FLERR, "fix hardsphere/wall face pos", error);
   const std::string face = arg[3];
@@ -53,10 +53,14 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
                    "takes them");
     } else if (strcmp(arg[iarg], "vibrate") == 0) {
       if (iarg + 4 > narg)
-        utils::missing_cmd_args(FLERR, "fix hardsphere/wall vibrate parabolic A omega", error);
-      if (strcmp(arg[iarg + 1], "parabolic") != 0)
-        error->all(FLERR, "Fix hardsphere/wall vibrate {} is not available (allowed: parabolic)",
-                   arg[iarg + 1]);
+        utils::missing_cmd_args(FLERR, "fix hardsphere/wall vibrate sine|parabolic A omega", error);
+      if (strcmp(arg[iarg + 1], "parabolic") == 0)
+        sine = false;
+      else if (strcmp(arg[iarg + 1], "sine") == 0)
+        sine = true;
+      else
+        error->all(FLERR, "Fix hardsphere/wall vibrate {} is not available (allowed: sine, "
+                   "parabolic)", arg[iarg + 1]);
       amplitude = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
       omega = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
       if (!(amplitude > 0.0))
@@ -124,6 +128,7 @@ granfric::EDWall FixHardsphereWall::wall() const
   w.seed = (uint64_t) seed;
   w.A = amplitude;
   w.omega = omega;
+  w.sine = sine;
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   const int nt = atom->ntypes;
   w.laws.resize(nt + 1);

@@ -2,7 +2,7 @@
    GRANFRIC: plane walls.
 
    fix ID group hardsphere/wall face pos [coeffs c1 ...] [thermal T seed]
-                                          [vibrate parabolic A omega]
+                                          [vibrate sine|parabolic A omega]
 
    A static plane wall for fix hardsphere/ed: face xlo|xhi|ylo|yhi|zlo|zhi in a non-periodic
    dimension, at position pos (a number or EDGE = the box boundary). Collisions with it are
@@ -40,7 +40,8 @@ class FixHardsphereWall : public Fix {
   std::vector<std::string> coeffs;    // own law coefficients (empty: the pair style's I,I)
   double temperature;                 // thermal wall temperature (< 0: not thermal)
   long seed;
-  double amplitude, omega;            // vibration (piecewise parabolic), 0: static
+  double amplitude, omega;            // vibration, 0: static
+  bool sine;                          // sinusoidal (else piecewise parabolic)
 };
 
 }    // namespace LAMMPS_NS

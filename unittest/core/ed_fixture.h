@@ -95,6 +95,7 @@ struct CoreRun {
       e.laws.assign(ref.ntypes + 1, w.law);
       e.A = w.A;
       e.omega = w.omega;
+      e.sine = w.sine;
       o.walls.push_back(e);
     }
     ed.configure(o, ref.ntypes, ref.laws);

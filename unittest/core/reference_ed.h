@@ -34,12 +34,14 @@ struct RefWall {
   double pos = 0.0;
   LawParams law;
   double A = 0.0, omega = 0.0;    // vibrating lower wall: piecewise-parabolic sinusoid mimic
+  bool sine = false;              //   or the sinusoid itself
   // the motion, written here independently of the core: on half period k (length pi/omega) the
   // wall rises and falls back (k even) or dips and comes back (k odd) with constant |acceleration|
   // 8 A omega^2 / pi^2, reaching pos +- A at mid-period
   double height(double s) const
   {
     if (A == 0.0) return pos;
+    if (sine) return pos + A * std::sin(omega * s);
     const double H = M_PI / omega, acc = 8 * A * omega * omega / (M_PI * M_PI);
     const double k = std::floor(s / H), u = s - k * H;
     const double up = ((long long) k % 2 == 0) ? 1.0 : -1.0;
@@ -48,6 +50,7 @@ struct RefWall {
   double speed(double s) const
   {
     if (A == 0.0) return 0.0;
+    if (sine) return A * omega * std::cos(omega * s);
     const double H = M_PI / omega, acc = 8 * A * omega * omega / (M_PI * M_PI);
     const double k = std::floor(s / H), u = s - k * H;
     const double up = ((long long) k % 2 == 0) ? 1.0 : -1.0;
@@ -117,14 +120,14 @@ struct Reference {
           const int d = w.dim;
           double tau;
           if (w.A > 0.0) {
-            // brute force: march in steps of 1/400 period up to the best time found so far,
+            // brute force: march in steps of 1/20000 period up to the best time found so far,
             // then bisect the first downward zero of x - a - wall
             auto gap = [&](double s) {
               const double dt = s;
               return xi[d] + vi[d] * dt + 0.5 * gravity[d] * dt * dt - p[i].a - w.height(time + s);
             };
             tau = NEVER;
-            const double h = 2 * M_PI / w.omega / 400;
+            const double h = 2 * M_PI / w.omega / 20000;
             double s0 = 0.0, f0 = gap(0.0);
             for (double s1 = h; s0 < best; s1 += h) {
               const double f1 = gap(s1);

@@ -288,6 +288,7 @@ TEST(EventDriven, WallsEqualReferenceAndHold)
 // injects energy, nobody goes through it
 TEST(EventDriven, VibratingBaseEqualsReference)
 {
+  for (int motion = 0; motion < 2; motion++)
   for (int dim = 2; dim <= 3; dim++) {
     SystemSpec s;
     s.n = 60;
@@ -297,13 +298,14 @@ TEST(EventDriven, VibratingBaseEqualsReference)
     Reference ref = make_system(s, LawParams::walton(0.9, 0.3, 0.4));
     ref.periodic[1] = false;
     ref.gravity = dim == 2 ? Vec3(0.0, -1.0, 0.0) : Vec3(0.0, -1.0, 0.0);
-    RefWall base{1, -1, ref.lo.y - 0.8, LawParams::walton(0.8, 0.5, 0.2), 0.3, 6.0};
+    RefWall base{1, -1, ref.lo.y - 0.8, LawParams::walton(0.8, 0.5, 0.2), 0.3, 6.0, motion == 1};
+    ref.tc = 1e-3;    // a grain carried up by the accelerating base collides ever faster (collapse)
     ref.walls.push_back(base);
     ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.8, law_of(0)});
     CoreRun run(ref);
     run.ed.start();
     const double dt = 0.13;
-    const int nwin = 25;
+    const int nwin = 15;
     for (int w = 0; w < nwin; w++) {
       run.total.add(run.ed.advance_to(dt));
       run.ed.rebase(dt);
@@ -313,7 +315,7 @@ TEST(EventDriven, VibratingBaseEqualsReference)
       }
     }
     ref.run_until(nwin * dt);
-    EXPECT_GT(run.total.wall_collisions, 20);
+    EXPECT_GT(run.total.wall_collisions, 8);    // the base is hit (11-14 times measured)
     EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
     EXPECT_EQ(run.total.collisions, ref.collisions);
     for (size_t i = 0; i < ref.p.size(); i++) {

@@ -389,6 +389,7 @@ TEST(FixHardsphereWall, BouncingBallCollapseAndTC)
 // particle ever gets below it
 TEST(FixHardsphereWall, VibratingBaseInjectsEnergy)
 {
+  for (const std::string motion : {"parabolic", "sine"}) {
   auto lmp = make_lammps();
   run(lmp.get(), "units lj\ndimension 2\natom_style sphere\nboundary p m p\ncomm_modify vel yes\n"
                  "region box block 0 20 0 20 -0.5 0.5\ncreate_box 1 box\n"
@@ -398,7 +399,7 @@ TEST(FixHardsphereWall, VibratingBaseInjectsEnergy)
                  "velocity all create 0.01 5 loop geom mom yes dist gaussian\n"
                  "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
                  "fix ed all hardsphere/ed gravity 0 -1 0 tc 1e-4\n"
-                 "fix base all hardsphere/wall ylo EDGE vibrate parabolic 0.1 10.0\n"
+                 "fix base all hardsphere/wall ylo EDGE vibrate " + motion + " 0.1 10.0\n"
                  "timestep 0.05\nthermo 0");
   auto *base = lmp->modify->get_fix_by_id("base");
   for (int s = 0; s < 200; s++) {
@@ -419,6 +420,7 @@ TEST(FixHardsphereWall, VibratingBaseInjectsEnergy)
   EXPECT_GT(c->vector[6], 10.0) << "wall collisions in the window";
   EXPECT_GT(c->vector[5], 0.0) << "the base injects energy per wall collision";
   EXPECT_EQ(c->vector[1], 0.0) << "elastic pair collisions lose nothing";
+  }
 }
 
 TEST_F(FixErrors, Wall)
@@ -440,8 +442,8 @@ TEST_F(FixErrors, Wall)
   EXPECT_LMP_ERROR(l.get(), "fix w2 all hardsphere/wall ylo EDGE spin 3",
                    "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal, vibrate\\)");
   EXPECT_LMP_ERROR(l.get(), "fix w8 all hardsphere/wall ylo EDGE thermal -1 5", "thermal T = -1 must be >= 0");
-  EXPECT_LMP_ERROR(l.get(), "fix w11 all hardsphere/wall ylo EDGE vibrate sine 0.1 10",
-                   "vibrate sine is not available \\(allowed: parabolic\\)");
+  EXPECT_LMP_ERROR(l.get(), "fix w11 all hardsphere/wall ylo EDGE vibrate square 0.1 10",
+                   "vibrate square is not available \\(allowed: sine, parabolic\\)");
   EXPECT_LMP_ERROR(l.get(), "fix w12 all hardsphere/wall ylo EDGE vibrate parabolic 0 10",
                    "amplitude A = 0 must be > 0");
   EXPECT_LMP_ERROR(l.get(), "fix w13 all hardsphere/wall ylo EDGE vibrate parabolic 0.1 -1",
@@ -449,7 +451,7 @@ TEST_F(FixErrors, Wall)
   EXPECT_LMP_ERROR(l.get(), "fix w14 all hardsphere/wall yhi EDGE vibrate parabolic 0.1 10",
                    "for lower walls \\(xlo, ylo, zlo\\) only");
   EXPECT_LMP_ERROR(l.get(), "fix w15 all hardsphere/wall ylo EDGE vibrate parabolic 0.1",
-                   "Illegal fix hardsphere/wall vibrate parabolic A omega");
+                   "Illegal fix hardsphere/wall vibrate sine\\|parabolic A omega");
   EXPECT_LMP_ERROR(l.get(), "fix w16 all hardsphere/wall ylo EDGE vibrate parabolic 0.1 10 thermal 1 5",
                    "a thermal wall cannot vibrate");
   EXPECT_LMP_ERROR(l.get(), "fix w9 all hardsphere/wall ylo EDGE thermal 1 0", "thermal seed = 0 must be > 0");

@@ -70,6 +70,7 @@ struct EDWall {
   // pos + A sin(omega t) (Risso et al. ref. 13): acceleration -aw on the half periods where the
   // sinusoid is positive, +aw on the others, aw = 8 A omega^2 / pi^2 (same amplitude, period)
   double A = 0.0, omega = 0.0;
+  bool sine = false;              // true: pos + A sin(omega t) itself (contacts by safe search)
   bool vibrating() const { return A > 0.0 && omega > 0.0; }
   // position, velocity and acceleration at absolute time s
   void motion(double s, double &w, double &vw, double &aw) const;
