@@ -106,10 +106,11 @@ void FixHardsphereWall::init()
     error->all(FLERR, "Fix hardsphere/wall {} coeffs: {} values given, pair style {} takes {} ({})",
                id, coeffs.size(), force->pair_style, pair->ncoeff(), pair->coeff_names());
   if (!coeffs.empty()) {
+    // parsed (and checked, with any warning) once per run
     std::vector<char *> a;
     for (auto &c : coeffs) a.push_back(const_cast<char *>(c.c_str()));
     double raw[4];
-    pair->parse_law(std::string("Fix hardsphere/wall ") + id + " coeffs", a.data(), raw);
+    own_law = pair->parse_law(std::string("Fix hardsphere/wall ") + id + " coeffs", a.data(), raw);
   }
   const double p = edge ? (side < 0 ? domain->boxlo[dim] : domain->boxhi[dim]) : pos;
   if (p < domain->boxlo[dim] || p > domain->boxhi[dim])
@@ -117,7 +118,8 @@ void FixHardsphereWall::init()
                domain->boxlo[dim], domain->boxhi[dim]);
 }
 
-granfric::EDWall FixHardsphereWall::wall() const
+// the wall's geometry and motion (no collision law)
+granfric::EDWall FixHardsphereWall::geometry() const
 {
   granfric::EDWall w;
   w.dim = dim;
@@ -129,25 +131,23 @@ granfric::EDWall FixHardsphereWall::wall() const
   w.A = amplitude;
   w.omega = omega;
   w.sine = sine;
+  return w;
+}
+
+granfric::EDWall FixHardsphereWall::wall() const
+{
+  granfric::EDWall w = geometry();
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   const int nt = atom->ntypes;
   w.laws.resize(nt + 1);
-  if (coeffs.empty()) {
-    for (int t = 1; t <= nt; t++) w.laws[t] = pair->wall_law(t);
-  } else {
-    std::vector<char *> a;
-    for (auto &c : coeffs) a.push_back(const_cast<char *>(c.c_str()));
-    double raw[4];
-    const granfric::LawParams law = pair->parse_law("Fix hardsphere/wall coeffs", a.data(), raw);
-    for (int t = 1; t <= nt; t++) w.laws[t] = law;
-  }
+  for (int t = 1; t <= nt; t++) w.laws[t] = coeffs.empty() ? pair->wall_law(t) : own_law;
   return w;
 }
 
 // the wall's position and velocity now
 double FixHardsphereWall::compute_vector(int n)
 {
-  const granfric::EDWall w = wall();
+  const granfric::EDWall w = geometry();
   double p, v, a;
   const double t = update->atime + (update->ntimestep - update->atimestep) * update->dt;
   w.motion(t, p, v, a);

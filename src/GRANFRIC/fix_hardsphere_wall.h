@@ -31,6 +31,7 @@ class FixHardsphereWall : public Fix {
   // the wall for the core, at the current box (after init(), which validates the coefficients)
   granfric::EDWall wall() const;
   int dimension() const { return dim; }
+  granfric::EDWall geometry() const;    // position and motion only
   double compute_vector(int) override;
 
  private:
@@ -38,6 +39,7 @@ class FixHardsphereWall : public Fix {
   bool edge;
   double pos;
   std::vector<std::string> coeffs;    // own law coefficients (empty: the pair style's I,I)
+  granfric::LawParams own_law;        // coeffs, parsed by init()
   double temperature;                 // thermal wall temperature (< 0: not thermal)
   long seed;
   double amplitude, omega;            // vibration, 0: static

@@ -37,16 +37,16 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   L = Vec3(o.hi[0] - o.lo[0], o.hi[1] - o.lo[1], o.hi[2] - o.lo[2]);
   if (o.dim == 2 && o.gravity.z != 0.0)
     throw std::invalid_argument("gravity must lie in the x-y plane in 2d");
-  for (int d = 0; d < o.dim; d++) {
-    bool wall = false;
-    for (const auto &w : o.walls) {
-      if (w.dim == d) wall = true;
-      if (o.periodic[w.dim]) throw std::invalid_argument("walls must be in non-periodic dimensions");
-      if ((int) w.laws.size() != nt + 1) throw std::invalid_argument("wall law table must have ntypes+1 entries");
-    }
-    if (!o.periodic[d] && !wall)
-      throw std::invalid_argument("a non-periodic dimension needs at least one wall");
+  bool walled[3] = {false, false, false};
+  for (const auto &w : o.walls) {
+    if (o.periodic[w.dim]) throw std::invalid_argument("walls must be in non-periodic dimensions");
+    if ((int) w.laws.size() != nt + 1)
+      throw std::invalid_argument("wall law table must have ntypes+1 entries");
+    walled[w.dim] = true;
   }
+  for (int d = 0; d < o.dim; d++)
+    if (!o.periodic[d] && !walled[d])
+      throw std::invalid_argument("a non-periodic dimension needs at least one wall");
 }
 
 Vec3 EventDriven::pos(int i, double t) const
