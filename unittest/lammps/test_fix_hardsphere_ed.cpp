@@ -299,6 +299,71 @@ TEST(FixHardsphereKick, HeatingRateMomentumAndEnergyBooks)
   EXPECT_NEAR(ed->compute_vector(8) - ed->compute_vector(2), E, 1e-9 * E);
 }
 
+// total energy of the system: kinetic (translation and rotation) plus potential m |g| y
+double total_energy(LAMMPS_NS::LAMMPS *lmp, double g)
+{
+  auto *atom = lmp->atom;
+  auto *T = lmp->modify->get_compute_by_id("T");
+  T->compute_vector();
+  double pot = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) pot += atom->rmass[i] * g * atom->x[i][1];
+  return T->vector[3] + T->vector[4] + pot;
+}
+
+// the energy books close over a million collisions: energy injected (kicks, vibrating base)
+// minus energy dissipated (pair and wall collisions) equals the change of the total energy to
+// 1e-9 of the energy that went through the system. Herbst's driven gas (Walton law, kicks
+// with spin driving) and Risso's vibrated bed (JZ law, gravity, vibrating base, side walls, lid)
+TEST(EnergyBooks, CloseOverAMillionCollisions)
+{
+  struct Scene {
+    const char *name, *setup;
+    double g;
+    int steps;
+  };
+  const Scene scenes[] = {
+      {"driven gas",
+       "boundary p p p\nlattice sq 0.3\nregion box block 0 30 0 30 -0.5 0.5\n"
+       "create_box 1 box\ncreate_atoms 1 box\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
+       "velocity all create 1.0 5 loop geom mom yes dist gaussian\n"
+       "pair_style hardsphere/walton inertia sphere\npair_coeff * * 0.95 0.5 0.4\n"
+       "fix ed all hardsphere/ed\nfix k all hardsphere/kick 5.0 0.15 4711 spin 0.2\n"
+       "timestep 0.5\n",
+       0.0, 400},
+      {"vibrated bed",
+       "boundary f f p\nregion box block 0 30 -0.1 80 -0.5 0.5\ncreate_box 1 box\n"
+       "lattice sq 1.2\nregion start block 0 30 0.5 20 -0.5 0.5\ncreate_atoms 1 region start\n"
+       "set type 1 diameter 1.0\nset type 1 mass 1.0\n"
+       "velocity all create 1.0 5 loop geom mom yes dist gaussian\n"
+       "pair_style hardsphere/jz inertia disc\npair_coeff * * 0.02 0.02 0.3 0.3\n"
+       "fix ed all hardsphere/ed gravity 0 -0.015625 0 tc 1e-4\n"
+       "fix base all hardsphere/wall ylo 0.0 vibrate parabolic 0.1 10.0\n"
+       "fix left all hardsphere/wall xlo EDGE\nfix right all hardsphere/wall xhi EDGE\n"
+       "fix lid all hardsphere/wall yhi EDGE\ntimestep 0.6283185307179586\n",
+       0.015625, 2000},
+  };
+  for (const auto &sc : scenes) {
+    SCOPED_TRACE(sc.name);
+    auto lmp = make_lammps();
+    run(lmp.get(), std::string("units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n") +
+                       sc.setup + "compute T all hardsphere/temp\nthermo 0\nrun 0 post no");
+    auto *ed = lmp->modify->get_fix_by_id("ed");
+    const double E0 = total_energy(lmp.get(), sc.g);
+    while (ed->compute_vector(1) < 1.0e6)
+      run(lmp.get(), "run " + std::to_string(sc.steps) + " post no");
+    const double E1 = total_energy(lmp.get(), sc.g);
+    // dissipated is net of what the walls gave (WALL_ENERGY): pair losses = the sum of both
+    const double injected = ed->compute_vector(8), dissipated = ed->compute_vector(2);
+    const double wall = ed->compute_vector(10), pair_loss = dissipated + wall;
+    EXPECT_GT(pair_loss, 0.0);
+    EXPECT_GT(injected + wall, 0.0) << "energy was injected";
+    const double through = injected + std::fabs(wall) + pair_loss;
+    EXPECT_NEAR((E1 - E0) / through, (injected - dissipated) / through, 1e-9)
+        << ed->compute_vector(1) << " collisions, E " << E0 << " -> " << E1 << ", injected "
+        << injected << ", dissipated " << dissipated;
+  }
+}
+
 TEST_F(FixErrors, Kick)
 {
   run(lmp.get(), "fix ed all hardsphere/ed");

@@ -308,6 +308,17 @@ void EDWall::motion(double s, double &w, double &vw, double &aw) const
   aw = -sg * a;
 }
 
+// Time (from now) during which a particle cannot touch a vibrating lower wall because its
+// surface stays above the wall's highest point pos + A: until its downward crossing of that
+// level (NEVER if it never comes down), 0 if it is at or below the level now. Searching for a
+// contact only from there on keeps the cost independent of how long the flight is.
+static double time_above_wall(const EDWall &w, double x, double v, double g, double a)
+{
+  const double top = w.pos + w.A + a;
+  if (x <= top) return 0.0;
+  return crossing_time(x, v, g, top, -1);
+}
+
 // First contact, at window time >= now, with a sinusoidally vibrating lower wall. The gap
 // f(t) = x(t) - a - w(t) has |f''| <= M = |g| + A omega^2, so on [t0, t0 + h] it stays above
 // f(t0) + f'(t0) s - M s^2 / 2: where that bound is positive there is no contact, elsewhere the
@@ -334,11 +345,13 @@ static double sine_contact(const EDWall &w, double clock, double now, double x, 
     if (horizon == NEVER && v < 0.0) horizon = crossing_time(x, v, g, w.pos - w.A + a, -1);
   }
   const double tmax = horizon == NEVER ? NEVER : now + horizon + 1e-9 * (1.0 + horizon);
+  const double start = now + time_above_wall(w, x, v, g, a);
+  if (start >= NEVER) return NEVER;
   double df0;
-  double f0 = gap(now, df0);
-  if (f0 <= 0.0 && df0 < 0.0) return now;    // overlapping and approaching: now
+  double f0 = gap(start, df0);
+  if (f0 <= 0.0 && df0 < 0.0) return start;    // overlapping and approaching: now
   const double hmax = 0.25 * 2.0 * M_PI / w.omega;
-  double t0 = now, h = hmax;
+  double t0 = start, h = hmax;
   const double tiny = 1e-13 * (1.0 + std::fabs(now));
   long guard = 0;
   while (t0 < tmax && ++guard < 100000000L) {
@@ -399,8 +412,8 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
     horizon = crossing_time(x, v, g, w.pos + w.A + a, +1);
     if (horizon == NEVER && v < 0.0) horizon = crossing_time(x, v, g, w.pos - w.A + a, -1);
   }
-  double t = now;
-  for (long iter = 0; iter < 100000000L; iter++) {
+  double t = now + time_above_wall(w, x, v, g, a);
+  for (long iter = 0; t < NEVER && iter < 100000000L; iter++) {
     const double s = clock + t;
     const double k = std::floor(s / H);
     const double tend = (k + 1.0) * H - clock;
