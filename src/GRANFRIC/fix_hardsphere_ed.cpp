@@ -34,7 +34,7 @@ static constexpr int NPACK = 15;
 
 FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), tc(0.0), maxevents(1000000), tlast(nullptr), pair(nullptr), cum_time(0.0),
-    gamma_bins(0), queue_valid(false), prev_dt(0.0)
+    gamma_bins(0), queue_valid(false), prev_dt(0.0), parallel(DOMAIN), reach(1.5)
 {
   gravity[0] = gravity[1] = gravity[2] = 0.0;
   int iarg = 3;
@@ -55,9 +55,26 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
       if (maxevents < 1)
         error->all(FLERR, "Fix hardsphere/ed maxevents = {} must be >= 1", maxevents);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "parallel") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed parallel", error);
+      if (strcmp(arg[iarg + 1], "domain") == 0)
+        parallel = DOMAIN;
+      else if (strcmp(arg[iarg + 1], "gather") == 0)
+        parallel = GATHER;
+      else
+        error->all(FLERR, "Fix hardsphere/ed parallel {} is not available (allowed: domain, "
+                   "gather)", arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "reach") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed reach", error);
+      reach = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(reach >= 1.0))
+        error->all(FLERR, "Fix hardsphere/ed reach = {} must be >= 1 (the ghost shell is "
+                   "reach * v_max * dt wide, plus the contact distance)", reach);
+      iarg += 2;
     } else {
-      error->all(FLERR, "Unknown fix hardsphere/ed keyword: {} (allowed: gravity, tc, maxevents)",
-                 arg[iarg]);
+      error->all(FLERR, "Unknown fix hardsphere/ed keyword: {} (allowed: gravity, tc, maxevents, "
+                 "parallel, reach)", arg[iarg]);
     }
   }
   if (domain->dimension == 2 && gravity[2] != 0.0)
@@ -154,11 +171,10 @@ void FixHardsphereED::init()
       error->all(FLERR, "Fix hardsphere/ed: the non-periodic dimension {} needs a fix "
                  "hardsphere/wall (at least on one side)", "xyz"[d]);
   }
-  if (comm->nprocs > 1 && comm->me == 0)
+  if (comm->nprocs > 1 && parallel == GATHER && comm->me == 0)
     error->warning(FLERR,
-                   "Fix hardsphere/ed on {} MPI ranks: every rank processes the whole window "
-                   "(exact, same trajectory as serial, no parallel speedup yet)",
-                   comm->nprocs);
+                   "Fix hardsphere/ed parallel gather on {} MPI ranks: every rank processes the "
+                   "whole window (exact, no parallel speedup)", comm->nprocs);
 }
 
 void FixHardsphereED::setup(int)
@@ -170,7 +186,7 @@ void FixHardsphereED::setup(int)
   int any;
   MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
   if (any) error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0");
-  configure_core();
+  configure_core(core_options());
   queue_valid = false;    // a new run may bring new coefficients, a new box or new atoms
 }
 
@@ -182,7 +198,7 @@ void FixHardsphereED::request_gamma_bins(int nbins)
   gamma_bins = nbins;
 }
 
-void FixHardsphereED::configure_core()
+granfric::EDOptions FixHardsphereED::core_options() const
 {
   granfric::EDOptions o;
   o.dim = domain->dimension;
@@ -196,11 +212,27 @@ void FixHardsphereED::configure_core()
   o.max_collisions = maxevents;
   o.gamma_bins = gamma_bins;
   for (auto *w : walls) o.walls.push_back(w->wall());
+  return o;
+}
+
+void FixHardsphereED::configure_core(const granfric::EDOptions &o)
+{
   const int nt = atom->ntypes;
   std::vector<granfric::LawParams> laws((nt + 1) * (nt + 1));
   for (int i = 1; i <= nt; i++)
     for (int j = 1; j <= nt; j++) laws[i * (nt + 1) + j] = pair->law(i, j);
   ed.configure(o, nt, laws);
+}
+
+// wrapped here: x jumped by whole periods, the image flags count them
+void FixHardsphereED::shift_image(imageint &image, const int *dimg)
+{
+  if (!(dimg[0] || dimg[1] || dimg[2])) return;
+  imageint xb = (image & IMGMASK) - IMGMAX + dimg[0];
+  imageint yb = (image >> IMGBITS & IMGMASK) - IMGMAX + dimg[1];
+  imageint zb = (image >> IMG2BITS) - IMGMAX + dimg[2];
+  image = ((imageint) (xb + IMGMAX) & IMGMASK) | (((imageint) (yb + IMGMAX) & IMGMASK) << IMGBITS) |
+      (((imageint) (zb + IMGMAX) & IMGMASK) << IMG2BITS);
 }
 
 double FixHardsphereED::window_start_time() const
@@ -215,13 +247,28 @@ double FixHardsphereED::window_start_time() const
 
 void FixHardsphereED::initial_integrate(int)
 {
+  const double dt = update->dt;
+  const double t0 = window_start_time();
+  totals[STEP_CONFLICTS] = totals[STEP_COMM] = 0.0;
+  if (parallel == DOMAIN && comm->nprocs > 1) {
+    if (window_domain(t0, dt)) {
+      totals[DOMAIN_WINDOWS] += 1.0;
+      finish_window(dt);
+      return;
+    }
+    totals[WINDOWS_REDONE] += 1.0;    // a conflict: the whole window again, gathered
+  }
+  window_gather(t0, dt);
+  finish_window(dt);
+}
+
+void FixHardsphereED::window_gather(double t0, double dt)
+{
   const int nlocal = atom->nlocal;
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *type = atom->type;
   const tagint *tag = atom->tag;
-  const double dt = update->dt;
-  const double t0 = window_start_time();
 
   // on one rank the packed atoms are the whole system: pack straight into recvbuf
   const int nprocs = comm->nprocs, me = comm->me;
@@ -258,6 +305,7 @@ void FixHardsphereED::initial_integrate(int)
     recvbuf.resize(total);
     MPI_Allgatherv(sendbuf.data(), mysize, MPI_DOUBLE, recvbuf.data(), counts.data(),
                    displs.data(), MPI_DOUBLE, world);
+    totals[STEP_COMM] += (double) total * (nprocs - 1);
   }
   const int ntotal = total / NPACK;
 
@@ -306,7 +354,7 @@ void FixHardsphereED::initial_integrate(int)
     ed.rebase(prev_dt);
     ed.set_clock(t0);
   } else {
-    configure_core();
+    configure_core(core_options());
     const double q = pair->shape_factor();
     ed.resize(ntotal);
     prev_tags.resize(ntotal);
@@ -354,6 +402,8 @@ void FixHardsphereED::initial_integrate(int)
     });
   }
 
+  ed.set_accounting(granfric::EDAccounting());
+  ed.record_events(nullptr);
   try {
     last = ed.advance_to(dt);
   } catch (granfric::EventCapError &e) {
@@ -401,15 +451,7 @@ void FixHardsphereED::initial_integrate(int)
     const granfric::EDParticle &p = ed.particle(s);
     const double *w = &written[(size_t) s * 9];
     const int *dimg = &jumped[(size_t) s * 3];
-    if (dimg[0] || dimg[1] || dimg[2]) {
-      // wrapped here: x jumped by whole periods, the image flags count them
-      imageint xb = (image[i] & IMGMASK) - IMGMAX + dimg[0];
-      imageint yb = (image[i] >> IMGBITS & IMGMASK) - IMGMAX + dimg[1];
-      imageint zb = (image[i] >> IMG2BITS) - IMGMAX + dimg[2];
-      image[i] = ((imageint) (xb + IMGMAX) & IMGMASK) |
-          (((imageint) (yb + IMGMAX) & IMGMASK) << IMGBITS) |
-          (((imageint) (zb + IMGMAX) & IMGMASK) << IMG2BITS);
-    }
+    shift_image(image[i], dimg);
     memcpy(x[i], w, 3 * sizeof(double));
     memcpy(v[i], w + 3, 3 * sizeof(double));
     memcpy(omega[i], w + 6, 3 * sizeof(double));
@@ -417,7 +459,12 @@ void FixHardsphereED::initial_integrate(int)
   }
   queue_valid = true;
   prev_dt = dt;
+}
 
+// the window's statistics (identical on every rank) into the running totals
+void FixHardsphereED::finish_window(double dt)
+{
+  totals[COMM] += totals[STEP_COMM];
   cum.add(last);
   cum_time += dt;
   totals[STEP_COLLISIONS] = (double) last.collisions;
@@ -473,15 +520,20 @@ int FixHardsphereED::unpack_exchange(int nlocal, double *buf)
 void FixHardsphereED::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    int size = NVECTOR * sizeof(double);
+    const double n = NVECTOR;
+    int size = (NVECTOR + 1) * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&n, sizeof(double), 1, fp);
     fwrite(totals, sizeof(double), NVECTOR, fp);
   }
 }
 
 void FixHardsphereED::restart(char *buf)
 {
-  memcpy(totals, buf, NVECTOR * sizeof(double));
+  // a count, then the totals (files of versions with fewer entries leave the new ones at 0)
+  const auto *d = reinterpret_cast<const double *>(buf);
+  const int n = std::min((int) d[0], (int) NVECTOR);
+  memcpy(totals, d + 1, n * sizeof(double));
 }
 
 int FixHardsphereED::pack_restart(int i, double *buf)

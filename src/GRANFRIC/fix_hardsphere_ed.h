@@ -31,7 +31,13 @@ class FixHardsphereED : public Fix {
   // QUEUE_REBUILDS: the fix's own neighbour structure (cell grid and every prediction) rebuilt
   // from scratch, because something outside the fix changed the atoms or a new run began
   enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, QUEUE_REBUILDS,
-         TC_ELASTIC, ENERGY_CREATING, INJECTED, WALL_COLLISIONS, WALL_ENERGY, NVECTOR };
+         TC_ELASTIC, ENERGY_CREATING, INJECTED, WALL_COLLISIONS, WALL_ENERGY,
+         // parallel windows (parallel domain): windows done by domain, conflicts (ghosts whose
+         // history disagreed with their owner's where it mattered, guard failures) in the last
+         // step and in total, windows redone gathered, doubles communicated in the last step
+         // and in total
+         DOMAIN_WINDOWS, STEP_CONFLICTS, CONFLICTS, WINDOWS_REDONE, STEP_COMM, COMM, NVECTOR };
+  enum { GATHER, DOMAIN };
 
   FixHardsphereED(class LAMMPS *, int, char **);
   // error unless a fix hardsphere/ed exists: the styles it calls from its window (kicks, walls)
@@ -95,8 +101,23 @@ class FixHardsphereED : public Fix {
   std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window
   std::vector<int> cmask;                       // atom masks in core order
 
-  void configure_core();
+  int parallel;                          // GATHER or DOMAIN
+  double reach;                          // ghost shell safety factor on v_max dt
+
+  granfric::EDOptions core_options() const;
+  void configure_core(const granfric::EDOptions &o);
   double window_start_time() const;
+  static void shift_image(imageint &image, const int *dimg);
+  void window_gather(double t0, double dt);
+  bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
+  void finish_window(double dt);
+
+  // domain-decomposed windows (fix_hardsphere_ed_domain.cpp)
+  std::vector<granfric::EDEvent> history;
+  std::vector<double> dsend, drecv, hsend, hrecv;
+  std::vector<long> gtag;                       // tags of the window's particles
+  std::vector<int> gmask;
+  std::vector<double> kick_tags;
 };
 
 }    // namespace LAMMPS_NS

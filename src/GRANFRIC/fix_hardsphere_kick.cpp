@@ -6,6 +6,7 @@
 
 #include "fix_hardsphere_ed.h"
 
+#include "atom.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -105,8 +106,28 @@ double FixHardsphereKick::gaussian(long seed, long tag, long k, int n)
   return (n % 2 == 0) ? r * std::cos(2.0 * M_PI * u2) : r * std::sin(2.0 * M_PI * u2);
 }
 
+granfric::Vec3 FixHardsphereKick::momentum_shift(long k, int dim) const
+{
+  double sum[4] = {0.0, 0.0, 0.0, 0.0}, all[4];
+  if (momentum) {
+    for (int i = 0; i < atom->nlocal; i++) {
+      if (!(atom->mask[i] & groupbit)) continue;
+      const long t = (long) atom->tag[i];
+      const double m = atom->rmass[i];
+      sum[0] += m * vdr * gaussian(seed, t, k, 0);
+      sum[1] += m * vdr * gaussian(seed, t, k, 1);
+      if (dim == 3) sum[2] += m * vdr * gaussian(seed, t, k, 2);
+      sum[3] += m;
+    }
+  }
+  MPI_Allreduce(sum, all, 4, MPI_DOUBLE, MPI_SUM, world);
+  if (!momentum || all[3] <= 0.0) return granfric::Vec3();
+  return (1.0 / all[3]) * granfric::Vec3(all[0], all[1], all[2]);
+}
+
 void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<double> &tag,
-                              const std::vector<int> &mask, long k, int dim) const
+                              const std::vector<int> &mask, long k, int dim,
+                              const granfric::Vec3 *dvcm_given) const
 {
   using granfric::Vec3;
   const int n = ed.size();
@@ -122,7 +143,7 @@ void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<doubl
     P += p.m * dv[e];
     M += p.m;
   }
-  const Vec3 dvcm = (momentum && M > 0.0) ? (1.0 / M) * P : Vec3();
+  const Vec3 dvcm = dvcm_given ? *dvcm_given : (momentum && M > 0.0) ? (1.0 / M) * P : Vec3();
   for (int e = 0; e < n; e++) {
     if (!(mask[e] & groupbit)) continue;
     granfric::EDParticle &p = ed.particle(e);

@@ -28,9 +28,17 @@ class FixHardsphereKick : public Fix {
 
   // for fix hardsphere/ed: the kicks k with k/f_dr in [t0, t1) (absolute times), consumed
   void kicks_in(double t0, double t1, std::vector<double> &times, std::vector<long> &index);
+  // the next kick's index, and setting it back (a window that is redone takes its kicks again)
+  long kick_counter() const { return next_kick; }
+  void rewind(long k) { next_kick = k; }
   // apply kick k to the gathered system: tag[e], mask[e] of core particle e
+  // (dvcm: the velocity shift that keeps the total momentum zero, computed over the whole
+  // group by momentum_shift(); null: over the particles of ed, which then must be all of them)
   void apply(granfric::EventDriven &ed, const std::vector<double> &tag,
-             const std::vector<int> &mask, long k, int dim) const;
+             const std::vector<int> &mask, long k, int dim,
+             const granfric::Vec3 *dvcm = nullptr) const;
+  // the shift of kick k over the group's atoms on all ranks (collective)
+  granfric::Vec3 momentum_shift(long k, int dim) const;
   // the Gaussian number n (0..5) of an atom at kick k: a pure function of (seed, tag, k, n)
   static double gaussian(long seed, long tag, long k, int n);
 

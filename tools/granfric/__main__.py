@@ -1,10 +1,19 @@
 """GRANFRIC tools command line.
 
-    PYTHONPATH=tools /usr/bin/python3 -m granfric reproduce herbst2005|luding1998|risso2005 [--quick|--full] [--out DIR]
-    PYTHONPATH=tools /usr/bin/python3 -m granfric collisions [--out DIR]
-(or tools/reproduce PAPER [--quick|--full])
+    /usr/bin/python3 tools/granfric reproduce herbst2005|luding1998|risso2005 [--quick|--full] [--out DIR]
+    /usr/bin/python3 tools/granfric collisions [--out DIR]
+    /usr/bin/python3 tools/granfric convection --kappas K1 K2 ... [--q Q] [--g G] [--periods P]
+(the same as PYTHONPATH=tools /usr/bin/python3 -m granfric ..., or tools/reproduce PAPER)
 """
+import os
 import sys
+
+if __name__ == "__main__" and not __package__:
+    # run as `python3 tools/granfric ...`: import the package from tools/
+    sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    from granfric.__main__ import main as _main
+    _main()
+    sys.exit(0)
 
 
 def main(argv=None):
@@ -22,6 +31,9 @@ def main(argv=None):
         if "--out" not in rest:
             rest += ["--out", f"out/{paper}"]
         return m.main(rest)
+    if argv and argv[0] == "convection":
+        from . import convection
+        return convection.main(argv[1:])
     if argv and argv[0] == "collisions":
         from . import collision_demo
         return collision_demo.main(argv[1:])

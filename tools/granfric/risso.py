@@ -2,8 +2,9 @@
 plane (q = q_n = q_t, kappa = kappa_s = kappa_d, discs, T0 = 1), from the closed form (model E of
 the same law) with Monte Carlo points through the C++ law, and the kappa of maximum loss.
 Fig. 2: height of the centre of mass of 500 discs on a thermal base against kappa
-(examples/compaction). The vibrated-bed convection scenes (Figs 3-5) need vibrating walls,
-which are not available yet.
+(examples/compaction). Figs 3-5 and Table I: thermal convection on a vibrated base
+(examples/convection, granfric.convection): kappa scans continuing from the previous
+configuration, states by K-means on (Psi1, Psi2), transition lines and their mean <dE>.
 
     PYTHONPATH=tools /usr/bin/python3 -m granfric.risso [--quick|--full] [--out DIR]
 """
@@ -11,7 +12,7 @@ import os
 
 import numpy as np
 
-from . import cli, energyloss, lammpslog, lmp
+from . import cli, convection, energyloss, lammpslog, lmp
 
 COMPACTION = os.path.join(lmp.ROOT, "examples", "compaction", "in.compaction")
 
@@ -80,9 +81,53 @@ def main(argv=None):
               "| kappa | Y_cm |", "|---|---|"]
     for k, (y, e) in zip(ks2, ycm):
         lines.append(f"| {k} | {y:.2f} ± {e:.2f} |")
+    lines += convection_figures(a)
     with open(os.path.join(a.out, "report.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines))
+
+
+# Figs 3-5: the quick run is one reentrant kappa scan at q = 0 and the larger gravity (3000
+# oscillations per kappa, samples every 50); the full run is the paper's: 1e5 oscillations per
+# point, samples every 100, q rows for both gravities (about 10 hours on one core per gravity)
+QUICK_KAPPAS = (0.005, 0.03, 0.05, 0.07, 0.1, 0.15, 0.3, 0.7, 1.5, 5.0)
+FULL_KAPPAS = (0.005, 0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08, 0.1, 0.15, 0.2, 0.3, 0.5,
+               0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 10.0)
+FULL_QS = {convection.G_HIGH: (0.0, 0.01, 0.02, 0.03, 0.05),
+           convection.G_LOW: (0.0, 0.02, 0.04, 0.06, 0.08, 0.1, 0.12)}
+
+
+def convection_figures(a):
+    if a.full:
+        periods, every, rows = 100000, 100, [(g, q) for g, qs in FULL_QS.items() for q in qs]
+        kappas = FULL_KAPPAS
+    else:
+        periods, every, rows = 3000, 50, [(convection.G_HIGH, 0.0)]
+        kappas = QUICK_KAPPAS
+    lines = ["", f"Figs 3-5: convection of 1000 discs on a vibrated base, {periods} oscillations per "
+             f"point (paper: 1e5), samples every {every}, the first half discarded; each kappa "
+             "continues from the previous configuration. States: K-means on (Psi1, Psi2) "
+             "(granfric.kmeans), collapse from the density profile.", ""]
+    points, table_lines = [], []
+    for g in sorted({g for g, _ in rows}, reverse=True):
+        trans = []
+        for gg, q in rows:
+            if gg != g:
+                continue
+            res = convection.scan(kappas, q, g, periods, every, a.out, desc=f"convection g={g} q={q}")
+            points += res
+            trans += convection.transitions(res)
+            if q == 0.0:
+                convection.plot_scan(res, os.path.join(a.out, f"fig3_psi_g{g}.png"),
+                                     f"Risso Fig. 3: g = {g}, q = {q}, {periods} oscillations per kappa")
+            lines += [f"g = {g}, q = {q}:", ""] + convection.state_rows(res) + [""]
+        convection.plot_map([p for p in points if p["g"] == g], os.path.join(a.out, f"fig5_states_g{g}.png"),
+                            f"Risso Fig. 5: states at g = {g}; lines: |<dE>| of the paper's transitions (Table I)", g=g)
+        table_lines += convection.table_rows(convection.table_one(trans), g)[(2 if table_lines else 0):]
+    lines += ["Table I: Monte Carlo <dE> through the C++ law at the transition points (geometric mean "
+              "of the neighbouring kappas), mean ± standard deviation over each line, and q_eff (eq 9):",
+              ""] + table_lines
+    return lines
 
 
 if __name__ == "__main__":

@@ -45,7 +45,7 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
     walled[w.dim] = true;
   }
   for (int d = 0; d < o.dim; d++)
-    if (!o.periodic[d] && !walled[d])
+    if (!o.periodic[d] && !walled[d] && !o.open[d])
       throw std::invalid_argument("a non-periodic dimension needs at least one wall");
 }
 
@@ -68,13 +68,23 @@ void EventDriven::advance(int i, double t)
   EDParticle &p = P[i];
   if (p.t == t) return;
   const double dt = t - p.t;
+  if (!paths.empty()) paths[ext[i]] += std::fabs(dt) * (norm(p.v) + 0.5 * std::fabs(dt) * norm(opt.gravity));
   p.x += dt * p.v + (0.5 * dt * dt) * opt.gravity;
   p.v += dt * opt.gravity;
   p.t = t;
 }
 
+double EventDriven::path(int e, double t) const
+{
+  const EDParticle &p = P[loc[e]];
+  const double dt = std::fabs(t - p.t);
+  return (paths.empty() ? 0.0 : paths[e]) + dt * (norm(p.v) + 0.5 * dt * norm(opt.gravity));
+}
+
 void EventDriven::resize(int n)
 {
+  paths.clear();
+  acct = EDAccounting();
   P.assign(n, EDParticle());
   ext.resize(n);
   loc.resize(n);
@@ -466,7 +476,7 @@ Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n,
   const EDParticle &p = P[i];
   uint64_t tbits;
   std::memcpy(&tbits, &t, sizeof(tbits));
-  uint64_t key = mix64(mix64(w.seed) ^ (uint64_t) ext[i]) ^ tbits;
+  uint64_t key = mix64(mix64(w.seed) ^ (uint64_t) this->key(i)) ^ tbits;
   auto uniform = [&key]() {
     key = mix64(key);
     return ((key >> 11) + 0.5) * 0x1.0p-53;
@@ -500,10 +510,8 @@ void EventDriven::collide_wall(int i)
   n[w.dim] = w.side < 0 ? 1.0 : -1.0;
   LawParams law = w.laws[p.type];
   const double since = t - p.t_last;
-  if (opt.tc > 0.0 && since >= 0.0 && since < opt.tc) {
-    law = law.elastic();
-    stats.tc_elastic++;
-  }
+  const bool tc_elastic = opt.tc > 0.0 && since >= 0.0 && since < opt.tc;
+  if (tc_elastic) law = law.elastic();
   Body b{p.v, p.w, p.m, p.a, p.q};
   Collision c;    // (its dE is set below for moving walls)
   if (w.T >= 0.0) {
@@ -525,12 +533,16 @@ void EventDriven::collide_wall(int i)
   p.t_last = t;
   p.ncoll++;
   p.last_partner = -1;
-  stats.wall_collisions++;
-  stats.dE_wall += c.dE;
-  if (c.sliding) stats.sliding++;
-  if (c.energy_created) stats.energy_created++;
+  if (history) history->push_back({t, ext[i], -1 - p.wall, p.v, p.w, Vec3(), Vec3()});
   const long ni = ++p.ncollisions;
-  stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
+  if (counted(i)) {
+    stats.wall_collisions++;
+    stats.dE_wall += c.dE;
+    if (c.sliding) stats.sliding++;
+    if (c.energy_created) stats.energy_created++;
+    if (tc_elastic) stats.tc_elastic++;
+    stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
+  }
   if (ni > opt.max_collisions) {
     std::ostringstream s;
     s << "particle " << ext[i] << " collided " << ni << " times within one window (cap "
@@ -572,10 +584,9 @@ void EventDriven::collide_pair(int i)
   LawParams law = laws[p.type * (ntypes + 1) + q.type];
   // (a last collision 'in the future' after a clock reset does not count)
   const double since_p = t - p.t_last, since_q = t - q.t_last;
-  if (opt.tc > 0.0 && ((since_p >= 0.0 && since_p < opt.tc) || (since_q >= 0.0 && since_q < opt.tc))) {
-    law = law.elastic();
-    stats.tc_elastic++;
-  }
+  const bool tc_elastic =
+      opt.tc > 0.0 && ((since_p >= 0.0 && since_p < opt.tc) || (since_q >= 0.0 && since_q < opt.tc));
+  if (tc_elastic) law = law.elastic();
   Body b1{p.v, p.w, p.m, p.a, p.q}, b2{q.v, q.w, q.m, q.a, q.q};
   const Collision c = collide(law, b1, b2, n);
   p.v = c.v1;
@@ -591,17 +602,23 @@ void EventDriven::collide_pair(int i)
     p.last_off[d] = p.coff[d];
     q.last_off[d] = -p.coff[d];
   }
+  const bool book = counted(key(i) <= key(j) ? i : j);
+  if (history) history->push_back({t, ext[i], ext[j], p.v, p.w, q.v, q.w});
+  const long ni = ++p.ncollisions, nj = ++q.ncollisions;
+  if (counted(i)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
+  if (counted(j)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, nj);
+  if (book) {
   stats.collisions++;
   stats.dE += c.dE;
   if (c.sliding) stats.sliding++;
   if (c.energy_created) stats.energy_created++;
+  if (tc_elastic) stats.tc_elastic++;
   if (opt.gamma_bins > 0) {
     const int nb = opt.gamma_bins;
     int k = (int) ((c.gamma() - 0.5 * M_PI) / (0.5 * M_PI) * nb);
     stats.gamma_hist[std::min(nb - 1, std::max(0, k))]++;
   }
-  const long ni = ++p.ncollisions, nj = ++q.ncollisions;
-  stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, std::max(ni, nj));
+  }
   if (ni > opt.max_collisions || nj > opt.max_collisions) {
     std::ostringstream s;
     s << "particles " << ext[i] << " and " << ext[j] << " collided " << std::max(ni, nj)
@@ -722,7 +739,10 @@ void EventDriven::global_event(int k)
   const int n = (int) P.size();
   auto energy = [&]() {
     double e = 0.0;
-    for (const auto &p : P) e += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
+    for (int i = 0; i < n; i++) {
+      const EDParticle &p = P[i];
+      if (counted(i)) e += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
+    }
     return e;
   };
   for (int i = 0; i < n; i++) advance(i, now);
@@ -730,13 +750,15 @@ void EventDriven::global_event(int k)
   gapply(k);
   stats.injected += energy() - before;
   stats.global_events++;
-  for (auto &p : P) {
+  for (int i = 0; i < n; i++) {
+    EDParticle &p = P[i];
     p.ncoll++;    // every trajectory changed: all stored predictions are stale
     p.last_partner = -1;
     if (opt.dim == 2) {
       p.v.z = 0.0;
       p.w.x = p.w.y = 0.0;
     }
+    if (history) history->push_back({now, ext[i], EDEvent::KICK, p.v, p.w, Vec3(), Vec3()});
   }
   std::vector<double> times(n);
   for (int i = 0; i < n; i++) {

@@ -80,6 +80,9 @@ struct EDOptions {
   int dim = 3;                          // 2: motion in x-y, spin about z; 3: full
   double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
   bool periodic[3] = {true, true, true};
+  // a non-periodic dimension needs a wall unless it is open: particles may leave [lo, hi]
+  // (they stay in the edge cells), as in a piece of a larger system
+  bool open[3] = {false, false, false};
   Vec3 gravity;
   double tc = 0.0;                      // TC model duration (0: off)
   long max_collisions = 1000000;        // per particle per window (inelastic-collapse guard)
@@ -97,6 +100,26 @@ struct EDStats {
   long global_events = 0;
   std::vector<long> gamma_hist;         // impact angles, EDOptions::gamma_bins bins
   void add(const EDStats &o);
+};
+
+// One collision of a window, for the cross-rank consistency check of domain-decomposed runs:
+// window time, the particles (external indices; j = -1 - k for wall k, j = KICK for a global
+// event) and their velocities and spins right after it.
+struct EDEvent {
+  static constexpr int KICK = -1000000;
+  double t;
+  int i, j;
+  Vec3 vi, wi, vj, wj;
+};
+
+// Accounting of a window that covers part of a larger system (the owned atoms of an MPI rank
+// plus copies of its neighbours' atoms): key = a global identity per particle (external index;
+// also seeds the thermal walls' random numbers), counted = the particles whose events this
+// window books. A pair collision is booked where its particle with the smaller key is counted,
+// so every collision is booked exactly once over all ranks. Empty: everything, keys = indices.
+struct EDAccounting {
+  std::vector<long> key;
+  std::vector<uint8_t> counted;
 };
 
 // thrown when a particle exceeds the per-window collision cap (inelastic collapse)
@@ -146,6 +169,13 @@ class EventDriven {
   // kinetic energy change is booked as injected, and every prediction is made afresh.
   void set_global_events(const std::vector<double> &times, std::function<void(int)> apply);
 
+  // optional per-window records (cleared by start()): every collision into *h; an upper bound
+  // of every particle's path length since start() (exact flights between events)
+  void record_events(std::vector<EDEvent> *h) { history = h; }
+  void track_paths(bool on) { paths.assign(on ? P.size() : 0, 0.0); }
+  double path(int e, double t) const;
+  void set_accounting(const EDAccounting &a) { acct = a; }
+
   // absolute time of window time 0 (the phase of vibrating walls); rebase() advances it
   void set_clock(double t) { clock = t; }
   double get_clock() const { return clock; }
@@ -159,6 +189,11 @@ class EventDriven {
   std::vector<int> ext, loc;             // internal -> external index, and back
   long crossings_since_reorder = 0;
   double clock = 0.0;
+  std::vector<EDEvent> *history = nullptr;
+  std::vector<double> paths;             // by external index (track_paths)
+  EDAccounting acct;
+  bool counted(int i) const { return acct.counted.empty() || acct.counted[ext[i]]; }
+  long key(int i) const { return acct.key.empty() ? (long) ext[i] : acct.key[ext[i]]; }
   std::vector<double> gtimes;            // pending global events
   std::function<void(int)> gapply;
   void global_event(int k);

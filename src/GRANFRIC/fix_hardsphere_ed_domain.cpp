@@ -1,0 +1,440 @@
+// clang-format off
+/* ----------------------------------------------------------------------
+   GRANFRIC: fix hardsphere/ed, domain-decomposed windows (keyword parallel domain).
+
+   Each rank runs the window for its owned atoms plus copies ("ghosts", not LAMMPS's ghosts) of
+   every other atom within a shell of width W = 2 D + 2 a_max around its owned atoms, where D
+   bounds the path any atom travels in the window. Whether the result is exact is then checked,
+   not assumed:
+   - guard: every owned atom's path (an upper bound from its exact flights) stayed <= D, so
+     every atom that touched an owned atom was in the shell;
+   - history: a ghost influenced the owned atoms up to a time t* (it collided with one, or with
+     a ghost that did before that one's own influence, ...); its collisions up to t* (partners,
+     times, velocities and spins after each) must equal those its owner computed.
+   If the earliest wrong event anywhere belonged to an owned atom, its partner was a ghost whose
+   history up to that time differs from its owner's (which is right up to then) - detected; or a
+   partner was missing - impossible after the guard. So when every rank passes, every owned
+   trajectory is the exact one. Otherwise the whole window is redone gathered (every rank runs
+   the whole system), which is exact by construction; the fix counts both.
+------------------------------------------------------------------------- */
+
+#include "fix_hardsphere_ed.h"
+
+#include "fix_hardsphere_kick.h"
+#include "fix_hardsphere_wall.h"
+#include "pair_hardsphere.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "force.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <unordered_map>
+
+using namespace LAMMPS_NS;
+using granfric::EDEvent;
+using granfric::INF;
+using granfric::Vec3;
+
+// per-atom values of a ghost: tag, x, v, omega, radius, rmass, type, tlast, mask (as gathered)
+static constexpr int NPACK = 15;
+// per event of a published history: window time, partner tag (-1 - k: wall k), v and omega after
+static constexpr int NEV = 8;
+
+namespace {
+struct Shell {
+  double lo[3], hi[3];
+  bool whole[3];    // the whole periodic length in this dimension (no images)
+};
+
+// the shift (in periods) that brings coordinate x into [lo, hi] in a dimension, or false
+bool image_in(double x, double lo, double hi, bool periodic, double L, int &s)
+{
+  for (int k : {0, -1, 1}) {
+    if (k != 0 && !periodic) continue;
+    const double y = x + k * L;
+    if (y >= lo && y <= hi) {
+      s = k;
+      return true;
+    }
+  }
+  return false;
+}
+}    // namespace
+
+bool FixHardsphereED::window_domain(double t0, double dt)
+{
+  const int nlocal = atom->nlocal, nprocs = comm->nprocs, me = comm->me;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *type = atom->type, *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  const int dim = domain->dimension;
+  const double q = pair->shape_factor();
+
+  // ------------------------------------------------ the reach D and the shell W
+  // speed bound: all of an atom's kinetic energy as translation, plus what a vibrating wall
+  // can add (twice its largest speed)
+  double mx[2] = {0.0, 0.0}, gmx[2];
+  for (int i = 0; i < nlocal; i++) {
+    const double w2 = omega[i][0] * omega[i][0] + omega[i][1] * omega[i][1] + omega[i][2] * omega[i][2];
+    const double v2 = v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2];
+    mx[0] = std::max(mx[0], std::sqrt(v2 + q * radius[i] * radius[i] * w2));
+    mx[1] = std::max(mx[1], radius[i]);
+  }
+  MPI_Allreduce(mx, gmx, 2, MPI_DOUBLE, MPI_MAX, world);
+  const granfric::EDOptions base = core_options();
+  double vwall = 0.0;
+  for (const auto &w : base.walls)
+    if (w.vibrating()) vwall = std::max(vwall, w.sine ? w.A * w.omega : 4.0 * w.A * w.omega / M_PI);
+  const double g = norm(base.gravity);
+  const double D = reach * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
+  const double W = 2.0 * D + 2.0 * gmx[1] * (1.0 + 1e-12) + 1e-12 * D;
+
+  // ------------------------------------------------ every rank's region (owned box + W)
+  std::vector<double> bb(6 * nprocs);
+  double mybb[6];
+  for (int d = 0; d < 3; d++) {
+    mybb[d] = INF;
+    mybb[3 + d] = -INF;
+  }
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      mybb[d] = std::min(mybb[d], x[i][d]);
+      mybb[3 + d] = std::max(mybb[3 + d], x[i][d]);
+    }
+  MPI_Allgather(mybb, 6, MPI_DOUBLE, bb.data(), 6, MPI_DOUBLE, world);
+  std::vector<Shell> reg(nprocs);
+  for (int r = 0; r < nprocs; r++)
+    for (int d = 0; d < 3; d++) {
+      Shell &R = reg[r];
+      R.lo[d] = bb[6 * r + d] - W;
+      R.hi[d] = bb[6 * r + 3 + d] + W;
+      R.whole[d] = false;
+      if (d >= dim) {
+        R.whole[d] = true;
+      } else if (domain->periodicity[d]) {
+        R.whole[d] = R.hi[d] - R.lo[d] >= domain->prd[d];
+      } else {
+        R.lo[d] = std::max(R.lo[d], domain->boxlo[d] - W);
+        R.hi[d] = std::min(R.hi[d], domain->boxhi[d] + W);
+      }
+    }
+  auto inside = [&](const Shell &R, const double *xi, int *s) {
+    for (int d = 0; d < 3; d++) {
+      s[d] = 0;
+      if (R.whole[d]) continue;
+      if (!image_in(xi[d], R.lo[d], R.hi[d], domain->periodicity[d], domain->prd[d], s[d]))
+        return false;
+    }
+    return true;
+  };
+
+  // ------------------------------------------------ send the atoms others need
+  std::vector<char> sent(nlocal, 0);
+  dsend.clear();
+  int s3[3];
+  for (int i = 0; i < nlocal; i++) {
+    for (int r = 0; r < nprocs && !sent[i]; r++)
+      if (r != me && bb[6 * r] <= bb[6 * r + 3] && inside(reg[r], x[i], s3)) sent[i] = 1;
+    if (!sent[i]) continue;
+    const size_t o = dsend.size();
+    dsend.resize(o + NPACK);
+    double *b = &dsend[o];
+    b[0] = (double) tag[i];
+    for (int d = 0; d < 3; d++) {
+      b[1 + d] = x[i][d];
+      b[4 + d] = v[i][d];
+      b[7 + d] = omega[i][d];
+    }
+    b[10] = radius[i];
+    b[11] = rmass[i];
+    b[12] = (double) type[i];
+    b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
+    b[14] = (double) mask[i];
+  }
+  counts.resize(nprocs);
+  displs.resize(nprocs);
+  int mysize = (int) dsend.size(), total = 0;
+  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  for (int p = 0; p < nprocs; p++) {
+    displs[p] = total;
+    total += counts[p];
+  }
+  drecv.resize(total);
+  MPI_Allgatherv(dsend.data(), mysize, MPI_DOUBLE, drecv.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, world);
+  totals[STEP_COMM] += (double) total * (nprocs - 1);
+
+  // ------------------------------------------------ the local system: owned, then ghosts
+  const Shell &R = reg[me];
+  std::vector<int> gsrc;    // offset of each ghost's record in drecv
+  std::vector<std::array<int, 3>> gshift;
+  if (nlocal > 0)
+    for (int p = 0; p < nprocs; p++) {
+      if (p == me) continue;
+      for (int k = displs[p]; k < displs[p] + counts[p]; k += NPACK) {
+        if (!inside(R, &drecv[k + 1], s3)) continue;
+        gsrc.push_back(k);
+        gshift.push_back({s3[0], s3[1], s3[2]});
+      }
+    }
+  const int nghost = (int) gsrc.size(), n = nlocal + nghost;
+  granfric::EDOptions o = base;
+  for (int d = 0; d < 3; d++) {
+    if (R.whole[d] || !domain->periodicity[d]) continue;
+    o.lo[d] = R.lo[d];
+    o.hi[d] = R.hi[d];
+    o.periodic[d] = false;
+    o.open[d] = true;
+  }
+  configure_core(o);
+  ed.resize(n);
+  gtag.resize(n);
+  gmask.resize(n);
+  granfric::EDAccounting acct;
+  acct.key.resize(n);
+  acct.counted.assign(n, 0);
+  for (int e = 0; e < n; e++) {
+    granfric::EDParticle &p = ed.particle(e);
+    if (e < nlocal) {
+      p.x = Vec3(x[e][0], x[e][1], x[e][2]);
+      p.v = Vec3(v[e][0], v[e][1], v[e][2]);
+      p.w = Vec3(omega[e][0], omega[e][1], omega[e][2]);
+      p.a = radius[e];
+      p.m = rmass[e];
+      p.type = type[e];
+      p.t_last = tlast[e] == -INF ? -INF : tlast[e] - t0;
+      gtag[e] = (long) tag[e];
+      gmask[e] = mask[e];
+      acct.counted[e] = 1;
+    } else {
+      const double *b = &drecv[gsrc[e - nlocal]];
+      const auto &sh = gshift[e - nlocal];
+      p.x = Vec3(b[1] + sh[0] * domain->prd[0], b[2] + sh[1] * domain->prd[1],
+                 b[3] + sh[2] * domain->prd[2]);
+      p.v = Vec3(b[4], b[5], b[6]);
+      p.w = Vec3(b[7], b[8], b[9]);
+      p.a = b[10];
+      p.m = b[11];
+      p.type = (int) b[12];
+      p.t_last = b[13];
+      gtag[e] = (long) b[0];
+      gmask[e] = (int) b[14];
+    }
+    p.q = q;
+    acct.key[e] = gtag[e];
+  }
+  ed.set_accounting(acct);
+  history.clear();
+  ed.record_events(&history);
+  ed.set_clock(t0);
+  ed.start();
+  ed.track_paths(true);
+
+  // kicks at their exact times, with the momentum shift over the whole group
+  std::vector<long> kick_from(kicks.size());
+  for (size_t f = 0; f < kicks.size(); f++) kick_from[f] = kicks[f]->kick_counter();
+  if (!kicks.empty()) {
+    struct Kick {
+      double t;
+      int fix;
+      long k;
+      Vec3 dvcm;
+    };
+    std::vector<Kick> all;
+    for (int f = 0; f < (int) kicks.size(); f++) {
+      std::vector<double> times;
+      std::vector<long> index;
+      kicks[f]->kicks_in(t0, t0 + dt, times, index);
+      for (size_t m = 0; m < times.size(); m++)
+        all.push_back({times[m] - t0, f, index[m], kicks[f]->momentum_shift(index[m], dim)});
+    }
+    std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
+    std::vector<double> times(all.size());
+    for (size_t m = 0; m < all.size(); m++) times[m] = all[m].t;
+    kick_tags.assign(gtag.begin(), gtag.end());
+    ed.set_global_events(times, [this, all, dim](int k) {
+      kicks[all[k].fix]->apply(ed, kick_tags, gmask, all[k].k, dim, &all[k].dvcm);
+    });
+  }
+
+  int fail = 0;
+  try {
+    last = ed.advance_to(dt);
+  } catch (std::exception &) {
+    fail = 1;    // e.g. the event cap: the gathered redo tells whether it is real
+  }
+  ed.record_events(nullptr);
+
+  // ------------------------------------------------ guard: no owned atom went further than D
+  if (!fail)
+    for (int e = 0; e < nlocal; e++)
+      if (ed.path(e, dt) > D) fail = 1;
+
+  // ------------------------------------------------ influence times t* of the ghosts
+  std::vector<double> tstar(n, -INF);
+  for (int e = 0; e < nlocal; e++) tstar[e] = INF;
+  for (auto it = history.rbegin(); it != history.rend(); ++it) {
+    if (it->j < 0) continue;
+    if (tstar[it->i] >= it->t) tstar[it->j] = std::max(tstar[it->j], it->t);
+    if (tstar[it->j] >= it->t) tstar[it->i] = std::max(tstar[it->i], it->t);
+  }
+
+  // ------------------------------------------------ publish the histories of sent atoms
+  // events per particle (pair and wall collisions, in time order)
+  std::vector<int> start(n + 1, 0);
+  for (const auto &h : history) {
+    if (h.j == EDEvent::KICK) continue;
+    start[h.i + 1]++;
+    if (h.j >= 0) start[h.j + 1]++;
+  }
+  for (int e = 0; e < n; e++) start[e + 1] += start[e];
+  std::vector<int> evlist(start[n]), fill(start.begin(), start.end() - 1);
+  for (int m = 0; m < (int) history.size(); m++) {
+    const auto &h = history[m];
+    if (h.j == EDEvent::KICK) continue;
+    evlist[fill[h.i]++] = m;
+    if (h.j >= 0) evlist[fill[h.j]++] = m;
+  }
+  // one event of particle e as published: time, partner tag or -1 - wall, v and omega after
+  auto event_of = [&](int e, int m, double *out) {
+    const auto &h = history[m];
+    const bool first = h.i == e;
+    out[0] = h.t;
+    out[1] = h.j < 0 ? (double) h.j : (double) gtag[first ? h.j : h.i];
+    const Vec3 &vv = first ? h.vi : h.vj, &ww = first ? h.wi : h.wj;
+    vv.to(out + 2);
+    ww.to(out + 5);
+  };
+  hsend.clear();
+  for (int e = 0; e < nlocal; e++) {
+    if (!sent[e]) continue;
+    const int k = start[e + 1] - start[e];
+    const size_t o0 = hsend.size();
+    hsend.resize(o0 + 2 + (size_t) k * NEV);
+    hsend[o0] = (double) gtag[e];
+    hsend[o0 + 1] = (double) k;
+    for (int m = 0; m < k; m++) event_of(e, evlist[start[e] + m], &hsend[o0 + 2 + (size_t) m * NEV]);
+  }
+  mysize = (int) hsend.size();
+  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  total = 0;
+  for (int p = 0; p < nprocs; p++) {
+    displs[p] = total;
+    total += counts[p];
+  }
+  hrecv.resize(total);
+  MPI_Allgatherv(hsend.data(), mysize, MPI_DOUBLE, hrecv.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, world);
+  totals[STEP_COMM] += (double) total * (nprocs - 1);
+
+  // ------------------------------------------------ compare where it mattered
+  std::unordered_map<long, size_t> published;
+  for (int p = 0; p < nprocs; p++) {
+    if (p == me) continue;
+    for (size_t k = displs[p]; k < (size_t) (displs[p] + counts[p]);) {
+      published[(long) hrecv[k]] = k;
+      k += 2 + (size_t) hrecv[k + 1] * NEV;
+    }
+  }
+  const double ttol = 1e-9 * dt, vtol = 1e-9 * (gmx[0] + 2.0 * vwall + g * dt);
+  const double wtol = vtol / std::max(gmx[1], 1e-300);
+  int conflicts = 0;
+  double mine_ev[NEV];
+  for (int e = nlocal; e < n && !fail; e++) {
+    if (tstar[e] == -INF) continue;
+    const auto it = published.find(gtag[e]);
+    if (it == published.end()) {
+      conflicts++;    // cannot happen: every ghost was sent, so its history was published
+      continue;
+    }
+    const double *theirs = &hrecv[it->second + 2];
+    const int ntheirs = (int) hrecv[it->second + 1];
+    int a = 0, b = 0;
+    bool same = true;
+    const double limit = tstar[e] + ttol;
+    while (same) {
+      const bool more_a = a < start[e + 1] - start[e] && history[evlist[start[e] + a]].t <= limit;
+      const bool more_b = b < ntheirs && theirs[(size_t) b * NEV] <= limit;
+      if (!more_a && !more_b) break;
+      if (more_a != more_b) {
+        same = false;
+        break;
+      }
+      event_of(e, evlist[start[e] + a], mine_ev);
+      const double *t = &theirs[(size_t) b * NEV];
+      same = mine_ev[1] == t[1] && std::fabs(mine_ev[0] - t[0]) <= ttol;
+      for (int c = 0; c < 3 && same; c++)
+        same = std::fabs(mine_ev[2 + c] - t[2 + c]) <= vtol &&
+            std::fabs(mine_ev[5 + c] - t[5 + c]) <= wtol;
+      a++;
+      b++;
+    }
+    if (!same) conflicts++;
+  }
+  int local[2] = {conflicts, fail}, global[2];
+  MPI_Allreduce(local, global, 2, MPI_INT, MPI_SUM, world);
+  totals[STEP_CONFLICTS] = (double) (global[0] + global[1]);
+  totals[CONFLICTS] += totals[STEP_CONFLICTS];
+  // test hook: GRANFRIC_ED_UNCHECKED=1 keeps a conflicting window (shows what the check is for)
+  static const bool unchecked = getenv("GRANFRIC_ED_UNCHECKED") != nullptr;
+  if (global[0] + global[1] > 0 && !unchecked) {
+    for (size_t f = 0; f < kicks.size(); f++) kicks[f]->rewind(kick_from[f]);
+    queue_valid = false;
+    return false;
+  }
+
+  // ------------------------------------------------ commit the owned atoms, sum the statistics
+  imageint *image = atom->image;
+  for (int e = 0; e < nlocal; e++) {
+    const granfric::EDParticle &p = ed.particle(e);
+    double xe[3];
+    ed.position(e, dt).to(xe);
+    int dimg[3] = {0, 0, 0};
+    for (int d = 0; d < 3; d++) {
+      if (!domain->periodicity[d]) continue;
+      const double L = domain->prd[d];
+      if (xe[d] < domain->boxlo[d] - 0.5 * L || xe[d] >= domain->boxhi[d] + 0.5 * L) {
+        dimg[d] = (int) std::floor((xe[d] - domain->boxlo[d]) / L);
+        xe[d] -= dimg[d] * L;
+      }
+    }
+    shift_image(image[e], dimg);
+    memcpy(x[e], xe, sizeof(xe));
+    ed.velocity(e, dt).to(v[e]);
+    p.w.to(omega[e]);
+    tlast[e] = p.t_last == -INF ? -INF : p.t_last + t0;
+  }
+  long lsum[8] = {last.collisions, last.sliding, last.tc_elastic, last.energy_created,
+                  last.crossings, last.wall_collisions, last.global_events, 0};
+  long gsum[8];
+  MPI_Allreduce(lsum, gsum, 8, MPI_LONG, MPI_SUM, world);
+  double esum[3] = {last.dE, last.dE_wall, last.injected}, gesum[3];
+  MPI_Allreduce(esum, gesum, 3, MPI_DOUBLE, MPI_SUM, world);
+  long lmax = last.max_collisions_one_particle, gmax;
+  MPI_Allreduce(&lmax, &gmax, 1, MPI_LONG, MPI_MAX, world);
+  if (!last.gamma_hist.empty()) {
+    std::vector<long> h(last.gamma_hist.size());
+    MPI_Allreduce(last.gamma_hist.data(), h.data(), (int) h.size(), MPI_LONG, MPI_SUM, world);
+    last.gamma_hist = h;
+  }
+  last.collisions = gsum[0];
+  last.sliding = gsum[1];
+  last.tc_elastic = gsum[2];
+  last.energy_created = gsum[3];
+  last.crossings = gsum[4];
+  last.wall_collisions = gsum[5];
+  last.global_events = kicks.empty() ? 0 : last.global_events;
+  last.dE = gesum[0];
+  last.dE_wall = gesum[1];
+  last.injected = gesum[2];
+  last.max_collisions_one_particle = gmax;
+  queue_valid = false;
+  return true;
+}

@@ -1,0 +1,142 @@
+"""Exact hard-sphere dynamics across MPI ranks (fix hardsphere/ed parallel domain).
+
+The scenes of in.scenes start from one initial state (written on one rank: velocity create
+sums over ranks) and run on 1, 2 and 4 ranks. Domain-decomposed windows equal the serial
+trajectory up to the rounding of periodic image shifts; chaos amplifies rounding by orders of
+magnitude per collision, so the runs are a few collision times long and the states must agree
+to 1e-9 of their scales. The chain scene is the constructed failure case: one step carries a
+pulse through a chain that crosses the subdomain boundary, so the rank on the far side cannot
+know it from its ghosts; the check must detect the conflict and redo the window (and without
+the check, the result is wrong). Long runs on 1 and 2 ranks agree in their averages, and a
+restart written on one rank count continues on another.
+"""
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from granfric import lammpslog  # noqa: E402
+
+LMP = os.path.join(ROOT, "tools", "lmp")
+SCENES = os.path.join(HERE, "in.scenes")
+
+
+def lmp(work, np_, env=None, **var):
+    cmd = [LMP] + (["-np", str(np_)] if np_ > 1 else []) + ["-in", SCENES, "-screen", "none"]
+    cmd += ["-log", var.pop("log", "none")]
+    for k, v in var.items():
+        cmd += ["-var", k, str(v)]
+    e = dict(os.environ)
+    e.update(env or {})
+    p = subprocess.run(cmd, cwd=work, capture_output=True, text=True, env=e)
+    assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
+
+
+def state(path):
+    """id x y vx vy omegaz ix iy, sorted by id."""
+    return np.loadtxt(path, skiprows=9)
+
+
+def scaled_difference(a, b, box):
+    """Largest difference of unwrapped positions (per box length), velocities and spins (per
+    their rms), and whether image flags and IDs agree."""
+    assert np.array_equal(a[:, 0], b[:, 0])
+    ua = a[:, 1:3] + a[:, 6:8] * box
+    ub = b[:, 1:3] + b[:, 6:8] * box
+    dx = np.abs(ua - ub).max() / box.max()
+    vs = np.sqrt((a[:, 3:5] ** 2).mean())
+    ws = np.sqrt((a[:, 5] ** 2).mean())
+    dv = np.abs(a[:, 3:5] - b[:, 3:5]).max() / vs
+    dw = np.abs(a[:, 5] - b[:, 5]).max() / ws
+    return max(dx, dv, dw)
+
+
+def box_of(log):
+    with open(log) as f:
+        for line in f:
+            if line.startswith("Created orthogonal box") or "orthogonal box =" in line:
+                w = line.replace("(", " ").replace(")", " ").split()
+                nums = [float(x) for x in w if x.replace(".", "").replace("-", "").replace("e", "").isdigit()]
+                lo, hi = np.array(nums[0:3]), np.array(nums[3:6])
+                return (hi - lo)[:2]
+    raise ValueError("no box in " + log)
+
+
+# steps: a few collisions per particle (checked below), short enough that chaos has not yet
+# amplified rounding beyond 1e-9
+CASES = {"dilute": 6, "dense": 20, "driven": 10, "vibrated": 10}
+
+
+@pytest.mark.parametrize("scene", list(CASES))
+def test_same_trajectory_on_1_2_4_ranks(tmp_path, scene):
+    w = str(tmp_path)
+    lmp(w, 1, scene=scene, steps=0, out="s0", restart_out="init", log="log.init")
+    box = box_of(os.path.join(w, "log.init"))
+    for n in (1, 2, 4):
+        lmp(w, n, scene=scene, steps=CASES[scene], restart_in="init", out=f"s{n}", log=f"log{n}")
+    a = state(os.path.join(w, "s1"))
+    d = lammpslog.read_thermo(os.path.join(w, "log2"))
+    per_particle = 2.0 * d["f_ed[2]"][-1] / len(a)
+    assert per_particle >= 1.5, f"only {per_particle:.2f} collisions per particle"
+    assert d["f_ed[12]"][-1] > 0, "no window was done by domain decomposition"
+    for n in (2, 4):
+        diff = scaled_difference(a, state(os.path.join(w, f"s{n}")), box)
+        assert diff < 1e-9, f"{scene}: {n} ranks differ from 1 rank by {diff:.2e}"
+
+
+def test_chain_across_boundary_is_detected_and_redone(tmp_path):
+    w = str(tmp_path)
+    lmp(w, 1, scene="chain", steps=1, out="s1", log="log1")
+    lmp(w, 2, scene="chain", steps=1, out="s2", log="log2")
+    a, b = state(os.path.join(w, "s1")), state(os.path.join(w, "s2"))
+    d = lammpslog.read_thermo(os.path.join(w, "log2"))
+    assert d["f_ed[14]"][-1] > 0, "the conflict was not detected"
+    assert d["f_ed[15]"][-1] == 1, "the window was not redone"
+    assert np.abs(a - b).max() < 1e-12
+    # the pulse went through: the last disc of the chain moves, the striker rests
+    assert a[30, 3] == pytest.approx(1.0) and abs(a[31, 3]) < 1e-12
+    # without the check the rank beyond the boundary never sees the pulse
+    lmp(w, 2, env={"GRANFRIC_ED_UNCHECKED": "1"}, scene="chain", steps=1, out="s2u", log="log2u")
+    u = state(os.path.join(w, "s2u"))
+    assert np.abs(a[:, 3] - u[:, 3]).max() > 0.5
+
+
+def block_mean(x, nblocks=8):
+    b = np.array([c.mean() for c in np.array_split(x, nblocks)])
+    return b.mean(), b.std(ddof=1) / np.sqrt(nblocks)
+
+
+def test_long_runs_agree_statistically(tmp_path):
+    """Driven steady state on 1 and 2 ranks: the trajectories part (chaos) but T_tr, T_rot and
+    the collision rate agree within their statistical errors."""
+    w = str(tmp_path)
+    lmp(w, 1, scene="driven", steps=0, out="s0", restart_out="init")
+    res = {}
+    for n in (1, 2):
+        lmp(w, n, scene="driven", steps=600, every=5, restart_in="init", out=f"s{n}", log=f"log{n}")
+        d = lammpslog.read_thermo(os.path.join(w, f"log{n}"))
+        sel = d["Step"] >= 200
+        rate = np.diff(d["f_ed[2]"])[sel[1:]] / np.diff(d["Time"])[sel[1:]]
+        res[n] = {"Ttr": block_mean(d["c_T[1]"][sel]), "Trot": block_mean(d["c_T[2]"][sel]),
+                  "rate": block_mean(rate)}
+    for key in ("Ttr", "Trot", "rate"):
+        (m1, e1), (m2, e2) = res[1][key], res[2][key]
+        assert abs(m1 - m2) < 4.0 * np.hypot(e1, e2), f"{key}: {m1} ± {e1} vs {m2} ± {e2}"
+        assert abs(m1 - m2) < 0.05 * m1, f"{key}: {m1} vs {m2}"
+
+
+@pytest.mark.parametrize("first,second", [(2, 1), (1, 2)])
+def test_restart_across_rank_counts(tmp_path, first, second):
+    w = str(tmp_path)
+    lmp(w, 1, scene="dense", steps=0, out="s0", restart_out="init", log="log.init")
+    box = box_of(os.path.join(w, "log.init"))
+    lmp(w, 1, scene="dense", steps=20, restart_in="init", out="straight")
+    lmp(w, first, scene="dense", steps=10, restart_in="init", out="half", restart_out="mid")
+    lmp(w, second, scene="dense", steps=10, restart_in="mid", out="end")
+    diff = scaled_difference(state(os.path.join(w, "straight")), state(os.path.join(w, "end")), box)
+    assert diff < 1e-9
