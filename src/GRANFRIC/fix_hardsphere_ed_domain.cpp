@@ -272,10 +272,35 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   ed.record_events(nullptr);
 
-  // ------------------------------------------------ guard: no owned atom went further than D
-  if (!fail)
-    for (int e = 0; e < nlocal; e++)
-      if (ed.path(e, dt) > D) fail = 1;
+  // ------------------------------------------------ guard: no owned atom went too far
+  // An owned atom j that went further than D (path p > D) is harmless if it stayed out of
+  // reach of every rank r that did not receive it: its distance to r's owned atoms is at
+  // least W + p - D = p + D + 2 a_max, more than it and any atom of r (path <= D, or harmless
+  // in turn) can close. A rank that did receive it compares its history instead.
+  auto gap_to = [&](const double *xi, int r) {
+    double s2 = 0.0;
+    for (int d = 0; d < dim; d++) {
+      if (reg[r].whole[d]) continue;
+      const double lo = bb[6 * r + d], hi = bb[6 * r + 3 + d];
+      double best = INF;
+      for (int k : {0, -1, 1}) {
+        if (k != 0 && !domain->periodicity[d]) continue;
+        const double y = xi[d] + k * domain->prd[d];
+        best = std::min(best, std::max(0.0, std::max(lo - y, y - hi)));
+      }
+      s2 += best * best;
+    }
+    return std::sqrt(s2);
+  };
+  for (int e = 0; e < nlocal && !fail; e++) {
+    const double p = ed.path(e, dt);
+    if (p <= D) continue;
+    for (int r = 0; r < nprocs && !fail; r++) {
+      if (r == me || bb[6 * r] > bb[6 * r + 3]) continue;
+      if (inside(reg[r], x[e], s3)) continue;    // r has it: histories are compared
+      if (gap_to(x[e], r) < W + p - D) fail = 1;
+    }
+  }
 
   // ------------------------------------------------ influence times t* of the ghosts
   std::vector<double> tstar(n, -INF);

@@ -1,8 +1,10 @@
 """Herbst et al. 2005 scene: randomly driven 2D monolayer of rough spheres (q = 2/5) with Coulomb
 friction (Walton law), simulated with GRANFRIC (examples/driven) and compared with the mean-field
-model E (granfric.meanfield) in the steady state.
+model E (granfric.meanfield) in the steady state (report.md table, driven.png), plus the paper's
+Figs 2, 3 and 5-11 (granfric.herbst_figs: fig*.png and their numbers in report.md).
 
     PYTHONPATH=tools /usr/bin/python3 -m granfric.herbst [--quick|--full] [--out DIR]
+    tools/reproduce herbst2005 [--quick|--full] [--out DIR]
 """
 import math
 import os
@@ -15,11 +17,70 @@ EXAMPLE = os.path.join(lmp.ROOT, "examples", "driven")
 Q = 0.4
 
 
-def simulate(r, mu, rtmax, phi, tend, out, nside=64, fdr=2.0, vdr=0.1, seed=4321, dt=0.5):
+def simulate(r, mu, rtmax, phi, tend, out, nside=64, fdr=2.0, vdr=0.1, seed=4321, dt=0.5,
+             series_every=None):
+    """Run examples/driven/in.driven; returns its thermo table (dict column -> array).
+
+    series_every = k (steps) also records, through a copy of in.driven with two fixes added
+    before its production run (examples/driven itself is unchanged):
+      d["series"]: T_tr, T_rot, R every k steps (fix ave/time on compute hardsphere/temp),
+      d["gamma"]:  the impact-angle histogram (gamma, P(gamma)) of the second half of the run
+                   (a second compute hardsphere/collisions, so thermo's collision windows are
+                   left alone)."""
     v = {"r": r, "mu": mu, "rtmax": rtmax, "phi": phi, "tend": tend, "out": out, "nside": nside,
          "fdr": fdr, "vdr": vdr, "seed": seed, "dt": dt}
-    lmp.run(os.path.join(EXAMPLE, "in.driven"), v)
-    return lammpslog.read_thermo(out)
+    script = os.path.join(EXAMPLE, "in.driven")
+    if series_every:
+        script = _script_with_series(os.path.dirname(os.path.abspath(out)))
+        v.update({"tevery": int(series_every), "tfile": out + ".T", "gfile": out + ".gamma"})
+    lmp.run(script, v)
+    d = lammpslog.read_thermo(out)
+    if series_every:
+        s = lammpslog.read_ave_time(out + ".T")
+        d["series"] = {"Time": s["TimeStep"] * float(dt), "Ttr": s["c_T[1]"], "Trot": s["c_T[2]"],
+                       "R": s["c_T[3]"]}
+        d["gamma"] = read_gamma(out + ".gamma")
+    return d
+
+
+_EXTRA = """variable        nh equal floor(${n}/2)
+compute         H all hardsphere/collisions ed
+fix             gam all ave/time ${nh} 1 ${nh} c_H[1] c_H[2] mode vector file ${gfile}
+fix             tser all ave/time ${tevery} 1 ${tevery} c_T[1] c_T[2] c_T[3] file ${tfile}
+"""
+
+
+def _script_with_series(directory):
+    """in.driven with the series and histogram fixes inserted before its final `run ${n}`."""
+    lines = open(os.path.join(EXAMPLE, "in.driven")).read().rstrip().splitlines()
+    if lines[-1].split() != ["run", "${n}"]:
+        raise RuntimeError("examples/driven/in.driven no longer ends with 'run ${n}'")
+    path = os.path.join(directory, "in.driven_series")
+    text = "\n".join(lines[:-1]) + "\n" + _EXTRA + lines[-1] + "\n"
+    if not os.path.exists(path) or open(path).read() != text:
+        with open(path, "w") as f:
+            f.write(text)
+    return path
+
+
+def read_gamma(path):
+    """Last block of a fix ave/time mode-vector file of (gamma, P(gamma)): arrays (gamma, P)."""
+    blocks, rows, left = [], None, 0
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or not line.strip():
+                continue
+            w = line.split()
+            if left == 0:
+                left, rows = int(w[1]), []
+                blocks.append(rows)
+                continue
+            rows.append([float(x) for x in w[1:3]])
+            left -= 1
+    if not blocks or not blocks[-1]:
+        raise ValueError(f"no histogram in {path}")
+    a = np.array(blocks[-1])
+    return a[:, 0], a[:, 1]
 
 
 def steady(d, tfrac=0.5):
@@ -49,29 +110,51 @@ def theory(r, mu, rtmax, phi, N, fdr, vdr, model="E", a=0.5, m=1.0):
 CASES_QUICK = [  # (r, mu, rt_max, fraction): dilute cases for the comparison with model E
     (0.95, 0.5, 0.4, 0.05), (0.95, 0.05, 0.4, 0.05), (0.95, math.inf, 0.4, 0.05),
     (0.99, 0.5, 1.0, 0.05)]
-CASES_FULL = [(r, mu, rt, phi) for phi in (0.0866, 0.34) for r in (0.95, 0.99) for rt in (0.4, 1.0)
-              for mu in (0.01, 0.03, 0.1, 0.3, 1.0, 3.0, math.inf)]
+
+
+def _row(r, mu, rt, phi, d, s, nside, fdr, vdr):
+    """A report/plot row: the run, its steady averages, model E's steady state and its integration
+    from the run's initial temperatures at the run's output times."""
+    from . import meanfield
+    R_E, T_E = theory(r, mu, rt, phi, nside * nside, fdr, vdr)
+    H = fdr * vdr * vdr * (1.0 - 1.0 / (nside * nside))
+    _, Ttr, Trot = meanfield.integrate("E", r, rt, mu, Q, phi, H_dr=H,
+                                       T0=(d["c_T[1]"][0], d["c_T[2]"][0]), times=d["Time"])
+    d["Ttr_E"], d["R_E"] = Ttr, np.where(Ttr > 0, Trot / Ttr, 0.0)
+    return (r, mu, rt, phi, d, s, R_E, T_E)
 
 
 def main(argv=None):
-    a = cli.scene_args(argv, __doc__, "out/herbst2005", "4 dilute cases, N = 4096 (default)", "mu scans at the paper's fractions")
-    cases = CASES_FULL if a.full else CASES_QUICK
+    from . import herbst_figs
+    a = cli.scene_args(argv, __doc__, "out/herbst2005",
+                       "4 dilute cases (N = 4096) for the table + the paper's figures at N = 1600, "
+                       "fraction 0.0866 (default; a few minutes)",
+                       "the paper's parameters: N = 11025, fractions 0.34 (Figs 3, 5-10) and "
+                       "0.0866 (Fig. 11), r = 0.95/0.99, rt_max = 0.4/1.0, mu 0.003 ... inf "
+                       "(about an hour)")
     rows = []
-    nside, fdr, vdr, tend = 64, 2.0, 0.1, 600.0
-    for r, mu, rt, phi in cli.progress(cases, "driven runs"):
-        log = os.path.join(a.out, f"log.driven_r{r}_mu{mu}_rt{rt}_phi{phi}")
-        d = simulate(r, "inf" if mu == math.inf else mu, rt, phi, tend, log, nside=nside, fdr=fdr, vdr=vdr)
-        s = steady(d)
-        R_E, T_E = theory(r, mu, rt, phi, nside * nside, fdr, vdr)
-        from . import meanfield
-        H = fdr * vdr * vdr * (1.0 - 1.0 / (nside * nside))
-        _, Ttr, Trot = meanfield.integrate("E", r, rt, mu, Q, phi, H_dr=H,
-                                           T0=(d["c_T[1]"][0], d["c_T[2]"][0]), times=d["Time"])
-        d["Ttr_E"], d["R_E"] = Ttr, np.where(Ttr > 0, Trot / Ttr, 0.0)
-        rows.append((r, mu, rt, phi, d, s, R_E, T_E))
-    report(rows, os.path.join(a.out, "report.md"))
-    plot(rows, os.path.join(a.out, "driven.png"))
-    print(open(os.path.join(a.out, "report.md")).read())
+    if not a.full:
+        nside, fdr, vdr, tend = 64, 2.0, 0.1, 600.0
+        for r, mu, rt, phi in cli.progress(CASES_QUICK, "driven runs"):
+            log = os.path.join(a.out, f"log.driven_r{r}_mu{mu}_rt{rt}_phi{phi}")
+            d = simulate(r, "inf" if mu == math.inf else mu, rt, phi, tend, log, nside=nside,
+                         fdr=fdr, vdr=vdr)
+            rows.append(_row(r, mu, rt, phi, d, steady(d), nside, fdr, vdr))
+    plan = herbst_figs.FULL if a.full else herbst_figs.QUICK
+    runs, res = herbst_figs.run(plan, a.out)
+    if a.full:   # the table lists every run of the figures; driven.png shows Fig. 11's runs
+        for (phi, r, rt, mu), run in sorted(runs.items(), key=lambda kv: kv[0]):
+            rows.append(_row(r, mu, rt, phi, run.d, run.st, plan.nside, plan.fdr, plan.vdr))
+        phi11, r11, rt11, mus11 = plan.fig11
+        shown = [w for w in rows if (w[3], w[0], w[2]) == (phi11, r11, rt11) and w[1] in mus11]
+    else:
+        shown = rows
+    path = os.path.join(a.out, "report.md")
+    report(rows, path)
+    with open(path, "a") as f:
+        f.write(herbst_figs.report_section(res))
+    plot(shown, os.path.join(a.out, "driven.png"))
+    print(open(path).read())
 
 
 def report(rows, path):
@@ -81,8 +164,9 @@ def report(rows, path):
              "| r | mu | rt_max | fraction | R sim | R model E | dev R | T_tr sim | T_tr model E | dev T_tr |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for r, mu, rt, phi, d, s, R_E, T_E in rows:
+        dev_R = f"{100 * (s['R'] / R_E - 1):+.1f} %" if R_E > 0 else "-"
         lines.append(f"| {r} | {mu} | {rt} | {phi} | {s['R']:.4f} ± {s['R_err']:.4f} | {R_E:.4f} | "
-                     f"{100 * (s['R'] / R_E - 1):+.1f} % | {s['Ttr']:.4f} ± {s['Ttr_err']:.4f} | "
+                     f"{dev_R} | {s['Ttr']:.4f} ± {s['Ttr_err']:.4f} | "
                      f"{T_E:.4f} | {100 * (s['Ttr'] / T_E - 1):+.1f} % |")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -1,0 +1,82 @@
+"""GRANFRIC benchmark: strong scaling of fix hardsphere/ed over MPI ranks (parallel domain),
+2D elastic discs at area fractions 0.05 and 0.3, N = 10^4 ... 10^6, steps of 1 ... 8 mean
+free times. For each case: CPU time per collision on 1 and 2 ranks (LAMMPS loop time), the
+speedup and parallel efficiency, the conflict rate (conflicting windows redone gathered, per
+window) and the communication per window (doubles received per rank). Figures measured in one
+run, not a test. Writes bench/results/mpi_scaling.csv and prints a markdown table.
+
+    /usr/bin/python3 bench/mpi_scaling.py [--quick | --full] [--ranks 2]
+"""
+import argparse
+import csv
+import os
+import re
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tools"))
+from granfric import cli, lmp  # noqa: E402
+
+
+def run(nside, phi, dtmft, ncoll, np_, parallel="domain"):
+    p = lmp.run(os.path.join(HERE, "in.speed"), {"dim": 2, "nside": nside, "phi": phi,
+                                                   "dtmft": dtmft, "ncoll": ncoll,
+                                                   "parallel": parallel},
+                np=np_, log=os.devnull, quiet=False)
+    out = p.stdout
+    loop = [float(m) for m in re.findall(r"Loop time of ([0-9.eE+-]+)", out)][-1]
+    b = re.search(r"BENCH dim 2 N (\d+) .* collisions (\d+)", out)
+    par = re.search(r"PARALLEL windows ([0-9.e+-]+) conflicts ([0-9.e+-]+) redone ([0-9.e+-]+) "
+                    r"comm ([0-9.e+-]+)", out)
+    return {"N": int(b.group(1)), "collisions": int(b.group(2)), "loop": loop,
+            "windows": float(par.group(1)), "conflicts": float(par.group(2)),
+            "redone": float(par.group(3)), "comm": float(par.group(4))}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    g = ap.add_mutually_exclusive_group()
+    g.add_argument("--quick", action="store_true")
+    g.add_argument("--full", action="store_true")
+    ap.add_argument("--ranks", type=int, default=2)
+    a = ap.parse_args(argv)
+    if a.quick:
+        cases = [(100, phi, dt) for phi in (0.05, 0.3) for dt in (1, 4)]
+    elif a.full:
+        cases = [(n, phi, dt) for n in (100, 316, 1000) for phi in (0.05, 0.3) for dt in (1, 2, 4, 8)]
+    else:
+        cases = [(n, phi, dt) for n in (100, 316) for phi in (0.05, 0.3) for dt in (1, 2, 4, 8)]
+    rows = []
+    for nside, phi, dt in cli.progress(cases, "scaling"):
+        ncoll = 10 if nside >= 316 else 20
+        one = run(nside, phi, dt, ncoll, 1)
+        par = run(nside, phi, dt, ncoll, a.ranks)
+        speedup = (one["loop"] / one["collisions"]) / (par["loop"] / par["collisions"])
+        rows.append({"N": one["N"], "phi": phi, "dt_mft": dt,
+                     "us_per_coll_1": 1e6 * one["loop"] / one["collisions"],
+                     f"us_per_coll_{a.ranks}": 1e6 * par["loop"] / par["collisions"],
+                     "speedup": speedup, "efficiency": speedup / a.ranks,
+                     "windows": par["windows"], "redone_fraction": par["redone"] / max(par["windows"], 1),
+                     "conflicts_per_window": par["conflicts"] / max(par["windows"], 1),
+                     "comm_doubles_per_window_per_rank": par["comm"] / max(par["windows"], 1) / a.ranks,
+                     "comm_per_particle": par["comm"] / max(par["windows"], 1) / a.ranks / one["N"]})
+    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
+    path = os.path.join(HERE, "results", "mpi_scaling.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    r = a.ranks
+    print(f"| N | fraction | dt (mean free times) | us/collision 1 rank | us/collision {r} ranks | "
+          f"efficiency | windows redone | doubles received per rank per window (per particle) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for x in rows:
+        print(f"| {x['N']} | {x['phi']} | {x['dt_mft']} | {x['us_per_coll_1']:.2f} | "
+              f"{x[f'us_per_coll_{r}']:.2f} | {100 * x['efficiency']:.0f} % | "
+              f"{100 * x['redone_fraction']:.1f} % | {x['comm_doubles_per_window_per_rank']:.0f} "
+              f"({x['comm_per_particle']:.2f}) |")
+    print(f"\nwritten {path}")
+
+
+if __name__ == "__main__":
+    main()
