@@ -18,6 +18,43 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tools"))
 from granfric import cli, lmp  # noqa: E402
 
 
+def run_callgrind(nside, phi, dtmft, ncoll, np_, work):
+    """Instructions executed inside fix hardsphere/ed (its window, MPI calls included) per
+    rank, counted by callgrind: reproducible on a shared machine. Returns (collisions, list of
+    instruction counts per rank)."""
+    import glob
+    import subprocess
+    env = dict(os.environ)
+    paths = {}
+    with open(os.path.join(lmp.ROOT, "build", "granfric-paths.sh")) as f:
+        for line in f:
+            k, _, v = line.strip().partition("=")
+            paths[k] = v.strip("'")
+    env["LAMMPS_PLUGIN_PATH"] = paths["GRANFRIC_PLUGIN_DIR"]
+    for old in glob.glob(os.path.join(work, "cg.out.*")):
+        os.remove(old)
+    cmd = ["mpirun", "--oversubscribe", "-np", str(np_)]
+    if os.geteuid() == 0:
+        cmd.append("--allow-run-as-root")
+    cmd += ["valgrind", "--tool=callgrind", "--toggle-collect=*FixHardsphereED::initial_integrate*",
+            "--callgrind-out-file=" + os.path.join(work, "cg.out.%p"), paths["GRANFRIC_LMP"],
+            "-in", os.path.join(HERE, "in.speed"), "-log", "none", "-var", "dim", "2",
+            "-var", "nside", str(nside), "-var", "phi", str(phi), "-var", "dtmft", str(dtmft),
+            "-var", "ncoll", str(ncoll), "-var", "neq", "1"]
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        raise RuntimeError(p.stderr[-2000:])
+    b = re.search(r"BENCH dim 2 N (\d+) .* collisions (\d+)", p.stdout)
+    ir = []
+    for path in sorted(glob.glob(os.path.join(work, "cg.out.*"))):
+        with open(path) as f:
+            for line in f:
+                if line.startswith("totals:") or line.startswith("summary:"):
+                    ir.append(int(line.split()[1]))
+                    break
+    return int(b.group(1)), int(b.group(2)), ir
+
+
 def run(nside, phi, dtmft, ncoll, np_, parallel="domain"):
     p = lmp.run(os.path.join(HERE, "in.speed"), {"dim": 2, "nside": nside, "phi": phi,
                                                    "dtmft": dtmft, "ncoll": ncoll,
@@ -39,7 +76,11 @@ def main(argv=None):
     g.add_argument("--quick", action="store_true")
     g.add_argument("--full", action="store_true")
     ap.add_argument("--ranks", type=int, default=2)
+    ap.add_argument("--callgrind", action="store_true",
+                    help="parallel efficiency from instruction counts (N = 1e5, slow but reproducible)")
     a = ap.parse_args(argv)
+    if a.callgrind:
+        return callgrind_table(a.ranks)
     if a.quick:
         cases = [(100, phi, dt) for phi in (0.05, 0.3) for dt in (1, 4)]
     elif a.full:
@@ -76,6 +117,21 @@ def main(argv=None):
               f"{100 * x['redone_fraction']:.1f} % | {x['comm_doubles_per_window_per_rank']:.0f} "
               f"({x['comm_per_particle']:.2f}) |")
     print(f"\nwritten {path}")
+
+
+def callgrind_table(ranks):
+    import tempfile
+    work = tempfile.mkdtemp(prefix="granfric_cg_")
+    print(f"| N | fraction | dt (mean free times) | instructions/collision 1 rank | busiest of {ranks} "
+          "ranks | efficiency (instructions) |")
+    print("|---|---|---|---|---|---|")
+    for phi in (0.05, 0.3):
+        for dt in (1, 2, 4):
+            N, c1, ir1 = run_callgrind(316, phi, dt, 3, 1, work)
+            _, c2, ir2 = run_callgrind(316, phi, dt, 3, ranks, work)
+            e1, e2 = sum(ir1) / c1, max(ir2) / c2
+            print(f"| {N} | {phi} | {dt} | {e1:.0f} | {e2:.0f} | {100 * e1 / (ranks * e2):.0f} % |",
+                  flush=True)
 
 
 if __name__ == "__main__":

@@ -35,3 +35,16 @@ def test_q_eff_undefined_beyond_minus_T0():
     assert energyloss.q_eff(-1.2) is None
     assert energyloss.q_eff(-1.0) == pytest.approx(0.5)
     assert energyloss.q_eff(0.0) == 0.0
+
+
+# Risso's Table I: <dE> averaged over each transition line and the q_eff printed next to it
+TABLE_I = [(-0.090, 0.023), (-0.351, 0.097), (-0.377, 0.105), (-0.614, 0.190),
+           (-0.047, 0.012), (-0.137, 0.035), (-0.147, 0.038), (-0.290, 0.079)]
+
+
+@pytest.mark.parametrize("dE,q", TABLE_I)
+def test_table_one_is_consistent_with_eq_9(dE, q):
+    """Each printed q_eff is eq 9 of the printed <dE> (to the table's rounding: <dE> to 1e-3
+    moves q_eff by at most 1e-3 / (4 sqrt(1 + dE)))."""
+    tol = 0.5e-3 + 0.5e-3 / (4.0 * (1.0 + dE) ** 0.5)
+    assert energyloss.q_eff(dE) == pytest.approx(q, abs=tol)
