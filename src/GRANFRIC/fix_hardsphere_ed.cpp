@@ -235,6 +235,18 @@ void FixHardsphereED::shift_image(imageint &image, const int *dimg)
       (((imageint) (zb + IMGMAX) & IMGMASK) << IMG2BITS);
 }
 
+// what the gathered window writes for core particle s at window time t: position in LAMMPS's
+// frame (less the stored periods), velocity, spin
+void FixHardsphereED::written_state(int s, double t, double *w) const
+{
+  ed.position(s, t).to(w);
+  const int *off = &offset[(size_t) s * 3];
+  for (int d = 0; d < 3; d++)
+    if (domain->periodicity[d]) w[d] -= off[d] * domain->prd[d];
+  ed.velocity(s, t).to(w + 3);
+  ed.particle(s).w.to(w + 6);
+}
+
 double FixHardsphereED::window_start_time() const
 {
   return update->atime + (double) (update->ntimestep - 1 - update->atimestep) * update->dt;
@@ -270,12 +282,27 @@ void FixHardsphereED::window_gather(double t0, double dt)
   const int *type = atom->type;
   const tagint *tag = atom->tag;
 
-  // on one rank the packed atoms are the whole system: pack straight into recvbuf
+  // On several ranks every rank packs its atoms and gathers everybody's. On one rank the atom
+  // arrays are the system: they are read in place (no copy), through the same accessor.
   const int nprocs = comm->nprocs, me = comm->me;
-  std::vector<double> &pack = nprocs == 1 ? recvbuf : sendbuf;
-  pack.resize((size_t) nlocal * NPACK);
-  for (int i = 0; i < nlocal; i++) {
-    double *b = &pack[(size_t) i * NPACK];
+  const int *amask = atom->mask;
+  auto field = [&](int k, int f) -> double {
+    if (nprocs > 1) return recvbuf[(size_t) k * NPACK + f];
+    switch (f) {
+      case 0: return (double) tag[k];
+      case 1: case 2: case 3: return x[k][f - 1];
+      case 4: case 5: case 6: return v[k][f - 4];
+      case 7: case 8: case 9: return omega[k][f - 7];
+      case 10: return radius[k];
+      case 11: return rmass[k];
+      case 12: return (double) type[k];
+      case 13: return tlast[k] == -INF ? -INF : tlast[k] - t0;
+      default: return (double) amask[k];
+    }
+  };
+  if (nprocs > 1) sendbuf.resize((size_t) nlocal * NPACK);
+  for (int i = 0; i < nlocal && nprocs > 1; i++) {
+    double *b = &sendbuf[(size_t) i * NPACK];
     b[0] = (double) tag[i];
     for (int d = 0; d < 3; d++) {
       b[1 + d] = x[i][d];
@@ -286,7 +313,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     b[11] = rmass[i];
     b[12] = (double) type[i];
     b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
-    b[14] = (double) atom->mask[i];
+    b[14] = (double) amask[i];
   }
   counts.resize(nprocs);
   displs.resize(nprocs);
@@ -312,11 +339,10 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
   // step's order usually still holds
   bool same_order = (int) order.size() == ntotal;
-  for (int s = 0; same_order && s < ntotal; s++)
-    same_order = recvbuf[(size_t) order[s].second * NPACK] == order[s].first;
+  for (int s = 0; same_order && s < ntotal; s++) same_order = field(order[s].second, 0) == order[s].first;
   if (!same_order) {
     order.resize(ntotal);
-    for (int k = 0; k < ntotal; k++) order[k] = {recvbuf[(size_t) k * NPACK], k};
+    for (int k = 0; k < ntotal; k++) order[k] = {field(k, 0), k};
     std::sort(order.begin(), order.end());
   }
   mine.assign(nlocal, -1);
@@ -328,22 +354,27 @@ void FixHardsphereED::window_gather(double t0, double dt)
 
   // Keep the event queue of the previous window when nothing outside this fix touched the
   // atoms since then: same atoms, and positions, velocities and spins bit for bit what this
-  // fix wrote (every rank sees the same gathered data, so all decide alike).
-  bool reuse = queue_valid && (int) written.size() == ntotal * 9;
+  // fix wrote (every rank sees the same gathered data, so all decide alike). What was written
+  // is recomputed from the core, with the same arithmetic, rather than stored.
+  bool reuse = queue_valid && ed.size() == ntotal && (int) prev_tags.size() == ntotal &&
+      (int) offset.size() == 3 * ntotal;
   for (int s = 0; reuse && s < ntotal; s++) {
-    const double *b = &recvbuf[(size_t) order[s].second * NPACK];
+    const int k = order[s].second;
     const granfric::EDParticle &p = ed.particle(s);
-    const double *w = &written[(size_t) s * 9];
-    reuse = order[s].first == prev_tags[s] && b[10] == p.a && b[11] == p.m &&
-        (int) b[12] == p.type && memcmp(b + 4, w + 3, 6 * sizeof(double)) == 0;
+    double w[9];
+    written_state(s, prev_dt, w);
+    reuse = order[s].first == prev_tags[s] && field(k, 10) == p.a && field(k, 11) == p.m &&
+        (int) field(k, 12) == p.type;
+    for (int f = 3; reuse && f < 9; f++) reuse = field(k, 1 + f) == w[f];
     // positions: what this fix wrote, or that shifted by one period by Domain::pbc()
     for (int d = 0; reuse && d < 3; d++) {
-      if (b[1 + d] == w[d]) continue;
+      const double b = field(k, 1 + d);
+      if (b == w[d]) continue;
       if (!domain->periodicity[d]) {
         reuse = false;
-      } else if (b[1 + d] == w[d] + domain->prd[d]) {
+      } else if (b == w[d] + domain->prd[d]) {
         offset[(size_t) s * 3 + d]--;
-      } else if (b[1 + d] == MAX(w[d] - domain->prd[d], domain->boxlo[d])) {
+      } else if (b == MAX(w[d] - domain->prd[d], domain->boxlo[d])) {
         offset[(size_t) s * 3 + d]++;
       } else {
         reuse = false;
@@ -359,16 +390,16 @@ void FixHardsphereED::window_gather(double t0, double dt)
     ed.resize(ntotal);
     prev_tags.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
-      const double *b = &recvbuf[(size_t) order[s].second * NPACK];
+      const int k = order[s].second;
       granfric::EDParticle &p = ed.particle(s);
-      p.x = granfric::Vec3(b[1], b[2], b[3]);
-      p.v = granfric::Vec3(b[4], b[5], b[6]);
-      p.w = granfric::Vec3(b[7], b[8], b[9]);
-      p.a = b[10];
-      p.m = b[11];
+      p.x = granfric::Vec3(field(k, 1), field(k, 2), field(k, 3));
+      p.v = granfric::Vec3(field(k, 4), field(k, 5), field(k, 6));
+      p.w = granfric::Vec3(field(k, 7), field(k, 8), field(k, 9));
+      p.a = field(k, 10);
+      p.m = field(k, 11);
       p.q = q;
-      p.type = (int) b[12];
-      p.t_last = b[13];
+      p.type = (int) field(k, 12);
+      p.t_last = field(k, 13);
       prev_tags[s] = order[s].first;
     }
     ed.set_clock(t0);
@@ -380,7 +411,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // kicks of fix hardsphere/kick at their exact times inside the window
   if (!kicks.empty()) {
     cmask.resize(ntotal);
-    for (int s = 0; s < ntotal; s++) cmask[s] = (int) recvbuf[(size_t) order[s].second * NPACK + 14];
+    for (int s = 0; s < ntotal; s++) cmask[s] = (int) field(order[s].second, 14);
     struct Kick {
       double t;
       int fix;
@@ -423,34 +454,28 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
   // atom more than half a box outside (a step longer than a box crossing) is wrapped here and
   // its image flags follow. The same arithmetic on every rank.
-  written.resize((size_t) ntotal * 9);
-  jumped.assign((size_t) ntotal * 3, 0);
+  std::vector<int> &slocal = jumped;    // owned atom of each core particle, or -1
+  slocal.assign(ntotal, -1);
+  for (int i = 0; i < nlocal; i++) slocal[mine[i]] = i;
+  imageint *image = atom->image;
   for (int s = 0; s < ntotal; s++) {
-    const granfric::EDParticle &p = ed.particle(s);
-    double *w = &written[(size_t) s * 9];
     int *off = &offset[(size_t) s * 3];
-    ed.position(s, dt).to(w);
+    int dimg[3] = {0, 0, 0};
+    const granfric::Vec3 xs = ed.position(s, dt);
     for (int d = 0; d < 3; d++) {
       if (!domain->periodicity[d]) continue;
       const double L = domain->prd[d];
-      double y = w[d] - off[d] * L;
+      const double y = xs[d] - off[d] * L;
       if (y < domain->boxlo[d] - 0.5 * L || y >= domain->boxhi[d] + 0.5 * L) {
-        const int k = (int) std::floor((y - domain->boxlo[d]) / L);
-        off[d] += k;
-        jumped[(size_t) s * 3 + d] = k;
-        y = w[d] - off[d] * L;
+        dimg[d] = (int) std::floor((y - domain->boxlo[d]) / L);
+        off[d] += dimg[d];
       }
-      w[d] = y;
     }
-    ed.velocity(s, dt).to(w + 3);
-    p.w.to(w + 6);
-  }
-  imageint *image = atom->image;
-  for (int i = 0; i < nlocal; i++) {
-    const int s = mine[i];
+    const int i = slocal[s];
+    if (i < 0) continue;
     const granfric::EDParticle &p = ed.particle(s);
-    const double *w = &written[(size_t) s * 9];
-    const int *dimg = &jumped[(size_t) s * 3];
+    double w[9];
+    written_state(s, dt, w);
     shift_image(image[i], dimg);
     memcpy(x[i], w, 3 * sizeof(double));
     memcpy(v[i], w + 3, 3 * sizeof(double));
@@ -489,10 +514,11 @@ double FixHardsphereED::compute_vector(int n)
 
 double FixHardsphereED::memory_usage()
 {
-  return (double) atom->nmax * sizeof(double) +
-      (double) ed.size() * (sizeof(granfric::EDParticle) + 2 * sizeof(int)) +
-      (double) (sendbuf.capacity() + recvbuf.capacity()) * sizeof(double) +
-      (double) order.capacity() * sizeof(std::pair<double, int>);
+  auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
+  return (double) atom->nmax * sizeof(double) + (double) ed.memory_bytes() + bytes(sendbuf) +
+      bytes(recvbuf) + bytes(order) + bytes(mine) + bytes(prev_tags) + bytes(offset) +
+      bytes(jumped) + bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
+      bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags);
 }
 
 void FixHardsphereED::grow_arrays(int nmax)

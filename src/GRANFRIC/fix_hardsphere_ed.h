@@ -94,9 +94,8 @@ class FixHardsphereED : public Fix {
   bool queue_valid;
   double prev_dt;
   std::vector<double> prev_tags;                // atom IDs in core order
-  std::vector<double> written;                  // x (wrapped), v, omega written at the window end
   std::vector<int> offset;                      // periods between the core's frame and LAMMPS's
-  std::vector<int> jumped;                      // periods this fix wrapped in the last window
+  std::vector<int> jumped;                      // scratch: owned atom of each core particle
   std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window
   std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window
   std::vector<int> cmask;                       // atom masks in core order
@@ -111,6 +110,7 @@ class FixHardsphereED : public Fix {
   void window_gather(double t0, double dt);
   bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);
+  void written_state(int s, double t, double *w) const;
 
   // domain-decomposed windows (fix_hardsphere_ed_domain.cpp)
   std::vector<granfric::EDEvent> history;

@@ -176,6 +176,15 @@ class EventDriven {
   double path(int e, double t) const;
   void set_accounting(const EDAccounting &a) { acct = a; }
 
+  // bytes held (particles, index maps, cells, queue, optional records)
+  size_t memory_bytes() const
+  {
+    return P.capacity() * sizeof(EDParticle) + (ext.capacity() + loc.capacity()) * sizeof(int) +
+        (head.capacity() + next.capacity() + prev.capacity()) * sizeof(int) + queue.memory_bytes() +
+        paths.capacity() * sizeof(double) + acct.key.capacity() * sizeof(long) +
+        acct.counted.capacity() + gtimes.capacity() * sizeof(double);
+  }
+
   // absolute time of window time 0 (the phase of vibrating walls); rebase() advances it
   void set_clock(double t) { clock = t; }
   double get_clock() const { return clock; }

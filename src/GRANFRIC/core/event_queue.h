@@ -50,6 +50,9 @@ class EventQueue {
   std::vector<Entry> heap;
   std::vector<int> pos;
 
+ public:
+  size_t memory_bytes() const { return heap.capacity() * sizeof(Entry) + pos.capacity() * sizeof(int); }
+
   static bool less(const Entry &a, const Entry &b) { return a.t < b.t || (a.t == b.t && a.id < b.id); }
   void place(int k, const Entry &e)
   {
