@@ -34,7 +34,7 @@ static constexpr int NPACK = 15;
 
 FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), tc(0.0), maxevents(1000000), tlast(nullptr), pair(nullptr), cum_time(0.0),
-    gamma_bins(0), queue_valid(false), prev_dt(0.0), parallel(DOMAIN), reach(1.5)
+    gamma_bins(0), queue_valid(false), prev_dt(0.0), parallel(DOMAIN), reach(1.2)
 {
   gravity[0] = gravity[1] = gravity[2] = 0.0;
   int iarg = 3;

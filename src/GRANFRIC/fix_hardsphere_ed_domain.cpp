@@ -368,7 +368,14 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       k += 2 + (size_t) hrecv[k + 1] * NEV;
     }
   }
-  const double ttol = 1e-9 * dt, vtol = 1e-9 * (gmx[0] + 2.0 * vwall + g * dt);
+  // Tolerances: a copy that went wrong (a partner it lacked) differs from its owner's record
+  // by a whole event (count or partner) or by O(1) in velocity after it. Rounding differences
+  // (copies across periodic boundaries sit at shifted coordinates, and cell grids differ, so
+  // states are advanced at different intermediate times) are amplified by chaos, by
+  // about 2 lambda / sigma per collision; they count as conflicts (the window is redone, so
+  // nothing is lost but time) once they exceed 1e-6 of the scales, which takes a window of
+  // several collisions per atom in a dilute gas (measured: doc/Howto_hardsphere_parallel).
+  const double ttol = 1e-6 * dt, vtol = 1e-6 * (gmx[0] + 2.0 * vwall + g * dt);
   const double wtol = vtol / std::max(gmx[1], 1e-300);
   int conflicts = 0;
   double mine_ev[NEV];
