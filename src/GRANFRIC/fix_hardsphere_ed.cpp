@@ -34,7 +34,7 @@ static constexpr int NPACK = 15;
 
 FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), tc(0.0), maxevents(1000000), tlast(nullptr), pair(nullptr), cum_time(0.0),
-    gamma_bins(0), queue_valid(false), prev_dt(0.0), parallel(DOMAIN), reach(1.2)
+    gamma_bins(0), queue_valid(false), prev_dt(0.0), parallel(DOMAIN), reach(1.2), widen(1.0)
 {
   gravity[0] = gravity[1] = gravity[2] = 0.0;
   int iarg = 3;
@@ -263,12 +263,16 @@ void FixHardsphereED::initial_integrate(int)
   const double t0 = window_start_time();
   totals[STEP_CONFLICTS] = totals[STEP_COMM] = 0.0;
   if (parallel == DOMAIN && comm->nprocs > 1) {
+    // the shell widens after a conflict (in dense gases collision chains outrun v_max) and
+    // narrows slowly while windows pass; the same on every rank (conflicts are global)
     if (window_domain(t0, dt)) {
       totals[DOMAIN_WINDOWS] += 1.0;
+      widen = MAX(1.0, widen * 0.99);
       finish_window(dt);
       return;
     }
     totals[WINDOWS_REDONE] += 1.0;    // a conflict: the whole window again, gathered
+    widen = MIN(64.0, 2.0 * widen);
   }
   window_gather(t0, dt);
   finish_window(dt);

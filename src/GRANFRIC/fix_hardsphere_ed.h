@@ -102,6 +102,7 @@ class FixHardsphereED : public Fix {
 
   int parallel;                          // GATHER or DOMAIN
   double reach;                          // ghost shell safety factor on v_max dt
+  double widen;                          // adaptive factor on top of reach (>= 1)
 
   granfric::EDOptions core_options() const;
   void configure_core(const granfric::EDOptions &o);

@@ -93,7 +93,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   for (const auto &w : base.walls)
     if (w.vibrating()) vwall = std::max(vwall, w.sine ? w.A * w.omega : 4.0 * w.A * w.omega / M_PI);
   const double g = norm(base.gravity);
-  const double D = reach * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
+  const double D = reach * widen * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
   const double W = 2.0 * D + 2.0 * gmx[1] * (1.0 + 1e-12) + 1e-12 * D;
 
   // ------------------------------------------------ every rank's region (owned box + W)

@@ -68,7 +68,6 @@ void EventDriven::advance(int i, double t)
   EDParticle &p = P[i];
   if (p.t == t) return;
   const double dt = t - p.t;
-  if (!paths.empty()) paths[ext[i]] += std::fabs(dt) * (norm(p.v) + 0.5 * std::fabs(dt) * norm(opt.gravity));
   p.x += dt * p.v + (0.5 * dt * dt) * opt.gravity;
   p.v += dt * opt.gravity;
   p.t = t;
@@ -76,9 +75,9 @@ void EventDriven::advance(int i, double t)
 
 double EventDriven::path(int e, double t) const
 {
-  const EDParticle &p = P[loc[e]];
-  const double dt = std::fabs(t - p.t);
-  return (paths.empty() ? 0.0 : paths[e]) + dt * (norm(p.v) + 0.5 * dt * norm(opt.gravity));
+  // between velocity changes gravity changes the speed by at most |g| t
+  const double s = std::sqrt(paths.empty() ? norm2(P[loc[e]].v) : paths[e]);
+  return t * (s + 0.5 * t * norm(opt.gravity));
 }
 
 void EventDriven::resize(int n)
@@ -531,6 +530,7 @@ void EventDriven::collide_wall(int i)
   p.v = c.v1;
   p.w = c.w1;
   p.t_last = t;
+  if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
   p.ncoll++;
   p.last_partner = -1;
   if (history) history->push_back({t, ext[i], -1 - p.wall, p.v, p.w, Vec3(), Vec3()});
@@ -594,6 +594,10 @@ void EventDriven::collide_pair(int i)
   q.v = c.v2;
   q.w = c.w2;
   p.t_last = q.t_last = t;
+  if (!paths.empty()) {
+    paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
+    paths[ext[j]] = std::max(paths[ext[j]], norm2(q.v));
+  }
   p.ncoll++;
   q.ncoll++;
   p.last_partner = j;
@@ -759,6 +763,7 @@ void EventDriven::global_event(int k)
       p.w.x = p.w.y = 0.0;
     }
     if (history) history->push_back({now, ext[i], EDEvent::KICK, p.v, p.w, Vec3(), Vec3()});
+    if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
   }
   std::vector<double> times(n);
   for (int i = 0; i < n; i++) {

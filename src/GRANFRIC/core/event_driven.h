@@ -169,10 +169,15 @@ class EventDriven {
   // kinetic energy change is booked as injected, and every prediction is made afresh.
   void set_global_events(const std::vector<double> &times, std::function<void(int)> apply);
 
-  // optional per-window records (cleared by start()): every collision into *h; an upper bound
-  // of every particle's path length since start() (exact flights between events)
+  // optional per-window records: every collision into *h; an upper bound of every particle's
+  // path length from window time 0 to t (from the largest speed it had at time 0 or right
+  // after a velocity change, plus what gravity adds; track_paths(true) after start())
   void record_events(std::vector<EDEvent> *h) { history = h; }
-  void track_paths(bool on) { paths.assign(on ? P.size() : 0, 0.0); }
+  void track_paths(bool on)
+  {
+    paths.assign(on ? P.size() : 0, 0.0);
+    for (size_t e = 0; e < paths.size(); e++) paths[e] = norm2(P[loc[e]].v);
+  }
   double path(int e, double t) const;
   void set_accounting(const EDAccounting &a) { acct = a; }
 
@@ -199,7 +204,7 @@ class EventDriven {
   long crossings_since_reorder = 0;
   double clock = 0.0;
   std::vector<EDEvent> *history = nullptr;
-  std::vector<double> paths;             // by external index (track_paths)
+  std::vector<double> paths;             // largest squared speed, by external index
   EDAccounting acct;
   bool counted(int i) const { return acct.counted.empty() || acct.counted[ext[i]]; }
   long key(int i) const { return acct.key.empty() ? (long) ext[i] : acct.key[ext[i]]; }
