@@ -224,6 +224,53 @@ void FixHardsphereED::configure_core(const granfric::EDOptions &o)
   ed.configure(o, nt, laws);
 }
 
+// the values of owned atom i sent to other ranks (NPACK doubles): tag, x, v, omega, radius,
+// rmass, type, last collision time relative to the window start t0, mask
+void FixHardsphereED::pack_atom(int i, double t0, double *b) const
+{
+  b[0] = (double) atom->tag[i];
+  for (int d = 0; d < 3; d++) {
+    b[1 + d] = atom->x[i][d];
+    b[4 + d] = atom->v[i][d];
+    b[7 + d] = atom->omega[i][d];
+  }
+  b[10] = atom->radius[i];
+  b[11] = atom->rmass[i];
+  b[12] = (double) atom->type[i];
+  b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
+  b[14] = (double) atom->mask[i];
+}
+
+// the kicks of every fix hardsphere/kick in [t0, t0 + dt) as global events of the core, applied
+// to core particles with IDs tags and masks; with shifts, the momentum shift of each kick is
+// summed over all ranks (collective: every rank calls this with the same kicks)
+void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<double> &tags,
+                                     const std::vector<int> &masks, bool shifts)
+{
+  struct Kick {
+    double t;
+    int fix;
+    long k;
+    granfric::Vec3 dvcm;
+  };
+  const int dim = domain->dimension;
+  std::vector<Kick> all;
+  for (int f = 0; f < (int) kicks.size(); f++) {
+    std::vector<double> times;
+    std::vector<long> index;
+    kicks[f]->kicks_in(t0, t0 + dt, times, index);
+    for (size_t m = 0; m < times.size(); m++)
+      all.push_back({times[m] - t0, f, index[m],
+                     shifts ? kicks[f]->momentum_shift(index[m], dim) : granfric::Vec3()});
+  }
+  std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
+  std::vector<double> times(all.size());
+  for (size_t m = 0; m < all.size(); m++) times[m] = all[m].t;
+  ed.set_global_events(times, [this, all, dim, &tags, &masks, shifts](int g) {
+    kicks[all[g].fix]->apply(ed, tags, masks, all[g].k, dim, shifts ? &all[g].dvcm : nullptr);
+  });
+}
+
 // wrapped here: x jumped by whole periods, the image flags count them
 void FixHardsphereED::shift_image(imageint &image, const int *dimg)
 {
@@ -305,20 +352,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     }
   };
   if (nprocs > 1) sendbuf.resize((size_t) nlocal * NPACK);
-  for (int i = 0; i < nlocal && nprocs > 1; i++) {
-    double *b = &sendbuf[(size_t) i * NPACK];
-    b[0] = (double) tag[i];
-    for (int d = 0; d < 3; d++) {
-      b[1 + d] = x[i][d];
-      b[4 + d] = v[i][d];
-      b[7 + d] = omega[i][d];
-    }
-    b[10] = radius[i];
-    b[11] = rmass[i];
-    b[12] = (double) type[i];
-    b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
-    b[14] = (double) amask[i];
-  }
+  for (int i = 0; i < nlocal && nprocs > 1; i++) pack_atom(i, t0, &sendbuf[(size_t) i * NPACK]);
   counts.resize(nprocs);
   displs.resize(nprocs);
   int mysize = nlocal * NPACK;
@@ -416,25 +450,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
   if (!kicks.empty()) {
     cmask.resize(ntotal);
     for (int s = 0; s < ntotal; s++) cmask[s] = (int) field(order[s].second, 14);
-    struct Kick {
-      double t;
-      int fix;
-      long k;
-    };
-    std::vector<Kick> all;
-    for (int f = 0; f < (int) kicks.size(); f++) {
-      std::vector<double> times;
-      std::vector<long> index;
-      kicks[f]->kicks_in(t0, t0 + dt, times, index);
-      for (size_t m = 0; m < times.size(); m++) all.push_back({times[m] - t0, f, index[m]});
-    }
-    std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
-    std::vector<double> times(all.size());
-    for (size_t m = 0; m < all.size(); m++) times[m] = all[m].t;
-    const int dim = domain->dimension;
-    ed.set_global_events(times, [this, all, dim](int g) {
-      kicks[all[g].fix]->apply(ed, prev_tags, cmask, all[g].k, dim);
-    });
+    schedule_kicks(t0, dt, prev_tags, cmask, false);
   }
 
   ed.set_accounting(granfric::EDAccounting());

@@ -112,6 +112,9 @@ class FixHardsphereED : public Fix {
   bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);
   void written_state(int s, double t, double *w) const;
+  void pack_atom(int i, double t0, double *b) const;
+  void schedule_kicks(double t0, double dt, const std::vector<double> &tags,
+                      const std::vector<int> &masks, bool shifts);
 
   // domain-decomposed windows (fix_hardsphere_ed_domain.cpp)
   std::vector<granfric::EDEvent> history;

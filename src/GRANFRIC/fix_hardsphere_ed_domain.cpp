@@ -145,18 +145,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     if (!sent[i]) continue;
     const size_t o = dsend.size();
     dsend.resize(o + NPACK);
-    double *b = &dsend[o];
-    b[0] = (double) tag[i];
-    for (int d = 0; d < 3; d++) {
-      b[1 + d] = x[i][d];
-      b[4 + d] = v[i][d];
-      b[7 + d] = omega[i][d];
-    }
-    b[10] = radius[i];
-    b[11] = rmass[i];
-    b[12] = (double) type[i];
-    b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
-    b[14] = (double) mask[i];
+    pack_atom(i, t0, &dsend[o]);
   }
   counts.resize(nprocs);
   displs.resize(nprocs);
@@ -241,27 +230,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   std::vector<long> kick_from(kicks.size());
   for (size_t f = 0; f < kicks.size(); f++) kick_from[f] = kicks[f]->kick_counter();
   if (!kicks.empty()) {
-    struct Kick {
-      double t;
-      int fix;
-      long k;
-      Vec3 dvcm;
-    };
-    std::vector<Kick> all;
-    for (int f = 0; f < (int) kicks.size(); f++) {
-      std::vector<double> times;
-      std::vector<long> index;
-      kicks[f]->kicks_in(t0, t0 + dt, times, index);
-      for (size_t m = 0; m < times.size(); m++)
-        all.push_back({times[m] - t0, f, index[m], kicks[f]->momentum_shift(index[m], dim)});
-    }
-    std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
-    std::vector<double> times(all.size());
-    for (size_t m = 0; m < all.size(); m++) times[m] = all[m].t;
     kick_tags.assign(gtag.begin(), gtag.end());
-    ed.set_global_events(times, [this, all, dim](int k) {
-      kicks[all[k].fix]->apply(ed, kick_tags, gmask, all[k].k, dim, &all[k].dvcm);
-    });
+    schedule_kicks(t0, dt, kick_tags, gmask, true);
   }
 
   int fail = 0;

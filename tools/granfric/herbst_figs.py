@@ -358,6 +358,12 @@ def simulate_all(plan, out):
 # ------------------------------------------------------------------------------------------------
 # figures
 # ------------------------------------------------------------------------------------------------
+def _save(plt, fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def _plt():
     import matplotlib
     matplotlib.use("Agg")
@@ -408,9 +414,7 @@ def fig2(path):
     axes[0].legend(fontsize=8, loc="upper left")
     fig.suptitle("Fig. 2: Walton law, C++ core (symbols: -g_t'/g_t after the collision) vs "
                  "eqs 5-6 (lines); dotted: γ0 (eq 22)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return {"max_dev": worst}
 
 
@@ -457,9 +461,7 @@ def fig3(runs, plan, path):
     axes[0].set_ylabel("P(γ)")
     fig.suptitle(f"Fig. 3: impact angles, simulation (symbols; N = {plan.N}, fraction {plan.phi}) "
                  "vs eq 12 with the simulated R (lines); arrows: γ0", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return rows
 
 
@@ -495,9 +497,7 @@ def fig5(runs, plan, path):
     ax[0].legend(fontsize=8)
     fig.suptitle(f"Fig. 5: r = {r}, μ = {mu}, fraction {plan.phi}, N = {plan.N}: simulation "
                  "(symbols) vs mean-field models A-E (lines)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return rows
 
 
@@ -547,9 +547,7 @@ def _mu_panels(runs, plan, path, quantity, title, ylabel):
         ax.legend(fontsize=6, ncol=2)
     fig.suptitle(f"{title}: fraction {plan.phi}, N = {plan.N}; thick lines / filled symbols "
                  "r = 0.99, thin / open r = 0.95", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return curves
 
 
@@ -621,9 +619,7 @@ def fig8(runs, plan, path):
     ax.set_title(f"Fig. 8: deviation from equipartition, rt_max = 1 (fraction {plan.phi}, "
                  f"N = {plan.N})\nthick lines / filled symbols r = 0.99, thin / open r = 0.95; "
                  "model A: 1 - R = 0", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return rows
 
 
@@ -664,9 +660,7 @@ def fig9(runs, plan, path):
         ax.legend(fontsize=6)
     fig.suptitle(f"Fig. 9: R at small μ, fit R = b μ^δ for μ ≤ {plan.fit_mu_max} (fraction "
                  f"{plan.phi}, N = {plan.N})", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return rows
 
 
@@ -730,9 +724,7 @@ def fig10(runs, plan, path):
     ax[2].legend(fontsize=7)
     fig.suptitle("Fig. 10: linear relaxation rates about the driven steady state (eq 43 with "
                  "correction 4; models C, E: Jacobian of eq 13)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return out
 
 
@@ -784,9 +776,7 @@ def fig11(runs, plan, path):
                      "Trot_E": float(Trot[-1])})
     fig.suptitle(f"Fig. 11: evolution from an elastic smooth start, N = {plan.N}, "
                  f"fraction {phi}, r = {r}, rt_max = {rt}; no fit parameters", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    _save(plt, fig, path)
     return rows
 
 
