@@ -188,6 +188,41 @@ void FixHardsphereED::setup(int)
   if (any) error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0");
   configure_core(core_options());
   queue_valid = false;    // a new run may bring new coefficients, a new box or new atoms
+  check_overlaps = true;
+}
+
+// once per run, after the first window's start: warn about overlapping atoms (usually a
+// mistake in the initial configuration); partial windows sum over the ranks
+void FixHardsphereED::report_overlaps(bool partial)
+{
+  if (!check_overlaps) return;
+  check_overlaps = false;
+  long ki, kj;
+  double depth;
+  double n = (double) ed.overlaps(1e-9, ki, kj, depth);
+  struct {
+    double depth;
+    int rank;
+  } in{depth, comm->me}, out = in;
+  if (partial) {
+    MPI_Allreduce(MPI_IN_PLACE, &n, 1, MPI_DOUBLE, MPI_SUM, world);
+    MPI_Allreduce(&in, &out, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+    long keys[2] = {ki, kj};
+    MPI_Bcast(keys, 2, MPI_LONG, out.rank, world);
+    ki = keys[0];
+    kj = keys[1];
+  } else if (ki >= 0) {
+    // gathered window: the keys are positions in atom-ID order
+    ki = (long) order[ki].first;
+    kj = (long) order[kj].first;
+  }
+  if (n > 0 && comm->me == 0)
+    error->warning(FLERR,
+                   "Fix hardsphere/ed: {} pairs of atoms overlap at the start of the run (deepest: "
+                   "atoms {} and {} by {:.6g}); approaching overlapping pairs collide at once, "
+                   "receding ones separate. Check the initial configuration (lattice spacing, "
+                   "diameters)",
+                   (long) n, ki, kj, out.depth);
 }
 
 void FixHardsphereED::request_gamma_bins(int nbins)
@@ -442,6 +477,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     }
     ed.set_clock(t0);
     ed.start();
+    report_overlaps(false);
     offset.assign((size_t) ntotal * 3, 0);
     totals[QUEUE_REBUILDS] += 1.0;
   }

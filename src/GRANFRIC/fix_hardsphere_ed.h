@@ -113,6 +113,8 @@ class FixHardsphereED : public Fix {
   void finish_window(double dt);
   void written_state(int s, double t, double *w) const;
   void pack_atom(int i, double t0, double *b) const;
+  bool check_overlaps = false;
+  void report_overlaps(bool partial);
   void schedule_kicks(double t0, double dt, const std::vector<double> &tags,
                       const std::vector<int> &masks, bool shifts);
 

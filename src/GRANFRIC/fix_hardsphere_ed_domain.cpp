@@ -224,6 +224,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   ed.record_events(&history);
   ed.set_clock(t0);
   ed.start();
+  report_overlaps(true);
   ed.track_paths(true);
 
   // kicks at their exact times, with the momentum shift over the whole group

@@ -370,6 +370,37 @@ TEST(EnergyBooks, CloseOverAMillionCollisions)
   }
 }
 
+// overlapping atoms at the start of a run: a warning that counts them and names the deepest
+// pair; a clean configuration gives none
+TEST(FixHardsphereED, WarnsAboutInitialOverlaps)
+{
+  for (const bool overlap : {true, false}) {
+    ::testing::internal::CaptureStdout();
+    {
+      std::vector<std::string> words = {"t", "-log", "none", "-nocite"};
+      std::vector<char *> argv;
+      for (auto &w : words) argv.push_back(w.data());
+      auto l = std::make_unique<LAMMPS_NS::LAMMPS>((int) argv.size(), argv.data(), MPI_COMM_WORLD);
+      run(l.get(), std::string("plugin load ") + GRANFRIC_PLUGIN);
+      run(l.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n"
+                   "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\n"
+                   "create_atoms 1 single 2.0 2.0 0.0\ncreate_atoms 1 single " +
+                       std::string(overlap ? "2.7" : "3.2") +
+                       " 2.0 0.0\ncreate_atoms 1 single 6.0 6.0 0.0\n"
+                       "set type 1 diameter 1.0\nset type 1 mass 1.0\n"
+                       "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
+                       "fix ed all hardsphere/ed\ntimestep 0.1\nthermo 0\nrun 2 post no");
+    }
+    const std::string out = ::testing::internal::GetCapturedStdout();
+    const auto at = out.find("1 pairs of atoms overlap at the start of the run (deepest: atoms 1 "
+                             "and 2 by 0.3)");
+    if (overlap)
+      EXPECT_NE(at, std::string::npos) << out;
+    else
+      EXPECT_EQ(out.find("overlap at the start"), std::string::npos) << out;
+  }
+}
+
 TEST_F(FixErrors, Kick)
 {
   run(lmp.get(), "fix ed all hardsphere/ed");

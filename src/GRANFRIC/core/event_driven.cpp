@@ -277,6 +277,56 @@ void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dh
   }
 }
 
+long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) const
+{
+  long count = 0;
+  depth = 0.0;
+  key_i = key_j = -1;
+  const int n = (int) P.size();
+  const int reach[3] = {1, opt.dim > 1 ? 1 : 0, opt.dim > 2 ? 1 : 0};
+  for (int i = 0; i < n; i++) {
+    const EDParticle &p = P[i];
+    const Vec3 xi = pos(i, now);
+    for (int dz = -reach[2]; dz <= reach[2]; dz++)
+      for (int dy = -reach[1]; dy <= reach[1]; dy++)
+        for (int dx = -reach[0]; dx <= reach[0]; dx++) {
+          const int d[3] = {dx, dy, dz};
+          int u[3], k[3];
+          bool skip = false;
+          for (int m = 0; m < 3 && !skip; m++) {
+            u[m] = p.c[m] + d[m];
+            k[m] = 0;
+            if (u[m] < 0 || u[m] >= nc[m]) {
+              if (!opt.periodic[m] || nc[m] < 3) skip = true;    // (under 3 cells: not searched)
+              k[m] = u[m] < 0 ? -1 : 1;
+              u[m] -= k[m] * nc[m];
+            }
+          }
+          if (skip) continue;
+          const int cell = (u[2] * nc[1] + u[1]) * nc[0] + u[0];
+          for (int j = head[cell]; j >= 0; j = next[j]) {
+            if (j == i) continue;
+            const EDParticle &q = P[j];
+            const long ki = key(i), kj = key(j);
+            if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
+            if (!counted(ki <= kj ? i : j)) continue;
+            const Vec3 shift((p.img[0] + k[0] - q.img[0]) * L.x, (p.img[1] + k[1] - q.img[1]) * L.y,
+                             (p.img[2] + k[2] - q.img[2]) * L.z);
+            const double dist = norm(xi - pos(j, now) - shift), sigma = p.a + q.a;
+            if (dist < sigma * (1.0 - tol)) {
+              count++;
+              if (sigma - dist > depth) {
+                depth = sigma - dist;
+                key_i = ki;
+                key_j = kj;
+              }
+            }
+          }
+        }
+  }
+  return count;
+}
+
 void EventDriven::schedule(int i)
 {
   EDParticle &p = P[i];

@@ -181,6 +181,13 @@ class EventDriven {
   double path(int e, double t) const;
   void set_accounting(const EDAccounting &a) { acct = a; }
 
+  // Pairs that overlap by more than tol times their contact distance at the current time
+  // (after start()), counted once (where the partner with the smaller key is counted); the
+  // keys of the deepest one and its overlap depth. The dynamics copes with overlaps (an
+  // approaching pair collides at once, a receding one separates), but they are usually a
+  // mistake in the initial configuration.
+  long overlaps(double tol, long &key_i, long &key_j, double &depth) const;
+
   // bytes held (particles, index maps, cells, queue, optional records)
   size_t memory_bytes() const
   {
