@@ -259,6 +259,26 @@ void FixHardsphereED::configure_core(const granfric::EDOptions &o)
   ed.configure(o, nt, laws);
 }
 
+// every rank's send buffer, concatenated in rank order into recv (counts and displs say where
+// each rank's part lies); the doubles received are counted; returns the total
+int FixHardsphereED::allgather(const std::vector<double> &send, std::vector<double> &recv)
+{
+  const int nprocs = comm->nprocs;
+  counts.resize(nprocs);
+  displs.resize(nprocs);
+  int mysize = (int) send.size(), total = 0;
+  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  for (int p = 0; p < nprocs; p++) {
+    displs[p] = total;
+    total += counts[p];
+  }
+  recv.resize(total);
+  MPI_Allgatherv(send.data(), mysize, MPI_DOUBLE, recv.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, world);
+  totals[STEP_COMM] += (double) total * (nprocs - 1);
+  return total;
+}
+
 // the values of owned atom i sent to other ranks (NPACK doubles): tag, x, v, omega, radius,
 // rmass, type, last collision time relative to the window start t0, mask
 void FixHardsphereED::pack_atom(int i, double t0, double *b) const
@@ -388,24 +408,11 @@ void FixHardsphereED::window_gather(double t0, double dt)
   };
   if (nprocs > 1) sendbuf.resize((size_t) nlocal * NPACK);
   for (int i = 0; i < nlocal && nprocs > 1; i++) pack_atom(i, t0, &sendbuf[(size_t) i * NPACK]);
-  counts.resize(nprocs);
-  displs.resize(nprocs);
-  int mysize = nlocal * NPACK;
-  int total = mysize;
+  int total = nlocal * NPACK;
   if (nprocs == 1) {
-    counts[0] = mysize;
-    displs[0] = 0;
+    displs.assign(1, 0);
   } else {
-    MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
-    total = 0;
-    for (int p = 0; p < nprocs; p++) {
-      displs[p] = total;
-      total += counts[p];
-    }
-    recvbuf.resize(total);
-    MPI_Allgatherv(sendbuf.data(), mysize, MPI_DOUBLE, recvbuf.data(), counts.data(),
-                   displs.data(), MPI_DOUBLE, world);
-    totals[STEP_COMM] += (double) total * (nprocs - 1);
+    total = allgather(sendbuf, recvbuf);
   }
   const int ntotal = total / NPACK;
 

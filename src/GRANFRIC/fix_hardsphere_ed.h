@@ -113,6 +113,7 @@ class FixHardsphereED : public Fix {
   void finish_window(double dt);
   void written_state(int s, double t, double *w) const;
   void pack_atom(int i, double t0, double *b) const;
+  int allgather(const std::vector<double> &send, std::vector<double> &recv);
   bool check_overlaps = false;
   void report_overlaps(bool partial);
   void schedule_kicks(double t0, double dt, const std::vector<double> &tags,

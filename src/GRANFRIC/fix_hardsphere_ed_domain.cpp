@@ -147,18 +147,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     dsend.resize(o + NPACK);
     pack_atom(i, t0, &dsend[o]);
   }
-  counts.resize(nprocs);
-  displs.resize(nprocs);
-  int mysize = (int) dsend.size(), total = 0;
-  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
-  for (int p = 0; p < nprocs; p++) {
-    displs[p] = total;
-    total += counts[p];
-  }
-  drecv.resize(total);
-  MPI_Allgatherv(dsend.data(), mysize, MPI_DOUBLE, drecv.data(), counts.data(), displs.data(),
-                 MPI_DOUBLE, world);
-  totals[STEP_COMM] += (double) total * (nprocs - 1);
+  allgather(dsend, drecv);
 
   // ------------------------------------------------ the local system: owned, then ghosts
   const Shell &R = reg[me];
@@ -286,7 +275,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // events per particle (pair and wall collisions, in time order)
   std::vector<int> start(n + 1, 0);
   for (const auto &h : history) {
-    if (h.j == EDEvent::KICK) continue;
     start[h.i + 1]++;
     if (h.j >= 0) start[h.j + 1]++;
   }
@@ -294,7 +282,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   std::vector<int> evlist(start[n]), fill(start.begin(), start.end() - 1);
   for (int m = 0; m < (int) history.size(); m++) {
     const auto &h = history[m];
-    if (h.j == EDEvent::KICK) continue;
     evlist[fill[h.i]++] = m;
     if (h.j >= 0) evlist[fill[h.j]++] = m;
   }
@@ -318,17 +305,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     hsend[o0 + 1] = (double) k;
     for (int m = 0; m < k; m++) event_of(e, evlist[start[e] + m], &hsend[o0 + 2 + (size_t) m * NEV]);
   }
-  mysize = (int) hsend.size();
-  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
-  total = 0;
-  for (int p = 0; p < nprocs; p++) {
-    displs[p] = total;
-    total += counts[p];
-  }
-  hrecv.resize(total);
-  MPI_Allgatherv(hsend.data(), mysize, MPI_DOUBLE, hrecv.data(), counts.data(), displs.data(),
-                 MPI_DOUBLE, world);
-  totals[STEP_COMM] += (double) total * (nprocs - 1);
+  allgather(hsend, hrecv);
 
   // ------------------------------------------------ compare where it mattered
   std::unordered_map<long, size_t> published;

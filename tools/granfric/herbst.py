@@ -89,11 +89,7 @@ def steady(d, tfrac=0.5):
     sel = t > tfrac * t[-1]
     out = {}
     for key, name in (("c_T[1]", "Ttr"), ("c_T[2]", "Trot"), ("c_T[3]", "R")):
-        x = d[key][sel]
-        blocks = np.array_split(x, 4)
-        means = np.array([b.mean() for b in blocks if len(b)])
-        out[name] = float(x.mean())
-        out[name + "_err"] = float(means.std(ddof=1) / math.sqrt(len(means))) if len(means) > 1 else float("nan")
+        out[name], out[name + "_err"] = lammpslog.block_mean(d[key][sel], 4)
     return out
 
 

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import cli, cooling, core, herbst
+from . import cli, cooling, core, herbst, lammpslog
 from . import meanfield as mf
 
 Q = 0.4                       # spheres
@@ -295,10 +295,7 @@ def steady_series(s, tfrac=0.5, nblocks=5):
     sel = t > tfrac * t[-1]
     out = {}
     for k in ("Ttr", "Trot", "R"):
-        x = s[k][sel]
-        means = np.array([b.mean() for b in np.array_split(x, nblocks) if len(b)])
-        out[k] = float(x.mean())
-        out[k + "_err"] = float(means.std(ddof=1) / math.sqrt(len(means)))
+        out[k], out[k + "_err"] = lammpslog.block_mean(s[k][sel], nblocks)
     return out
 
 

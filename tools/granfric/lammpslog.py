@@ -49,3 +49,12 @@ def read_ave_time(path):
     data = np.array(rows, dtype=float)
     names = names if names and len(names) == data.shape[1] else [f"c{k}" for k in range(data.shape[1])]
     return {n: data[:, k] for k, n in enumerate(names)}
+
+
+def block_mean(x, nblocks=4):
+    """Mean of a time series and its standard error from the means of nblocks consecutive
+    blocks (nan with fewer than two non-empty blocks)."""
+    x = np.asarray(x, dtype=float)
+    means = np.array([b.mean() for b in np.array_split(x, nblocks) if len(b)])
+    err = float(means.std(ddof=1) / np.sqrt(len(means))) if len(means) > 1 else float("nan")
+    return float(x.mean()), err

@@ -23,9 +23,7 @@ def compaction(kappa, out, tend=20000.0, seed=4321):
     lmp.run(COMPACTION, {"kappa": kappa, "tend": tend, "out": out, "seed": seed})
     d = lammpslog.read_thermo(out)
     t, y = d["Time"], d["v_ycm"]
-    y = y[t > 0.5 * t[-1]]
-    blocks = np.array([b.mean() for b in np.array_split(y, 4)])
-    return float(y.mean()), float(blocks.std(ddof=1) / 2.0)
+    return lammpslog.block_mean(y[t > 0.5 * t[-1]], 4)
 
 
 def main(argv=None):

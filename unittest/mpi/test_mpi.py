@@ -106,11 +106,6 @@ def test_chain_across_boundary_is_detected_and_redone(tmp_path):
     assert np.abs(a[:, 3] - u[:, 3]).max() > 0.5
 
 
-def block_mean(x, nblocks=8):
-    b = np.array([c.mean() for c in np.array_split(x, nblocks)])
-    return b.mean(), b.std(ddof=1) / np.sqrt(nblocks)
-
-
 def test_long_runs_agree_statistically(tmp_path):
     """Driven steady state on 1 and 2 ranks: the trajectories part (chaos) but T_tr, T_rot and
     the collision rate agree within their statistical errors."""
@@ -122,8 +117,9 @@ def test_long_runs_agree_statistically(tmp_path):
         d = lammpslog.read_thermo(os.path.join(w, f"log{n}"))
         sel = d["Step"] >= 200
         rate = np.diff(d["f_ed[2]"])[sel[1:]] / np.diff(d["Time"])[sel[1:]]
-        res[n] = {"Ttr": block_mean(d["c_T[1]"][sel]), "Trot": block_mean(d["c_T[2]"][sel]),
-                  "rate": block_mean(rate)}
+        res[n] = {"Ttr": lammpslog.block_mean(d["c_T[1]"][sel], 8),
+                  "Trot": lammpslog.block_mean(d["c_T[2]"][sel], 8),
+                  "rate": lammpslog.block_mean(rate, 8)}
     for key in ("Ttr", "Trot", "rate"):
         (m1, e1), (m2, e2) = res[1][key], res[2][key]
         assert abs(m1 - m2) < 4.0 * np.hypot(e1, e2), f"{key}: {m1} ± {e1} vs {m2} ± {e2}"

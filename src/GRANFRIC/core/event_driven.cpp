@@ -812,7 +812,6 @@ void EventDriven::global_event(int k)
       p.v.z = 0.0;
       p.w.x = p.w.y = 0.0;
     }
-    if (history) history->push_back({now, ext[i], EDEvent::KICK, p.v, p.w, Vec3(), Vec3()});
     if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
   }
   std::vector<double> times(n);

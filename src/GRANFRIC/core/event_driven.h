@@ -103,10 +103,9 @@ struct EDStats {
 };
 
 // One collision of a window, for the cross-rank consistency check of domain-decomposed runs:
-// window time, the particles (external indices; j = -1 - k for wall k, j = KICK for a global
-// event) and their velocities and spins right after it.
+// window time, the particles (external indices; j = -1 - k for wall k) and their velocities and
+// spins right after it. Global events (kicks) are not recorded: they act alike on every copy.
 struct EDEvent {
-  static constexpr int KICK = -1000000;
   double t;
   int i, j;
   Vec3 vi, wi, vj, wj;
