@@ -71,8 +71,7 @@ int main(int argc, char **argv)
     windows++;
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const double bytes = sizeof(EDParticle) + 4.0 * sizeof(int) +
-      (double) std::pow(std::max(1.0, std::floor(side)), dim) / N * sizeof(int);
+  const double bytes = (double) ed.memory_bytes() / N;
   std::printf("dim %d N %ld fraction %.3f dt %.3g mft | collisions %ld crossings/collision %.3f "
               "windows %ld | %.4g s | %.4g collisions/s | core memory %.0f B/particle\n",
               dim, N, phi, dt_mft, s.collisions, (double) s.crossings / s.collisions, windows, secs,

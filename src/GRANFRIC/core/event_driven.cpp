@@ -44,6 +44,9 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
       throw std::invalid_argument("wall law table must have ntypes+1 entries");
     walled[w.dim] = true;
   }
+  if (o.walls.size() > 100) throw std::invalid_argument("at most 100 walls");
+  if (o.max_collisions < 1 || o.max_collisions > 2000000000L)
+    throw std::invalid_argument("the collision cap per particle and window must be 1 to 2e9");
   for (int d = 0; d < o.dim; d++)
     if (!o.periodic[d] && !walled[d] && !o.open[d])
       throw std::invalid_argument("a non-periodic dimension needs at least one wall");
@@ -85,6 +88,8 @@ void EventDriven::resize(int n)
   paths.clear();
   acct = EDAccounting();
   P.assign(n, EDParticle());
+  S.assign(n, Sched());
+  img.assign(n, Image{{0, 0, 0}});
   ext.resize(n);
   loc.resize(n);
   for (int i = 0; i < n; i++) ext[i] = loc[i] = i;
@@ -98,25 +103,34 @@ void EventDriven::reorder()
   const int n = (int) P.size();
   const int ncell = (int) head.size();
   std::vector<int> count(ncell + 1, 0), order(n), newloc(n);
-  for (int i = 0; i < n; i++) count[P[i].cell + 1]++;
+  for (int i = 0; i < n; i++) count[cell_of(i) + 1]++;
   for (int c = 0; c < ncell; c++) count[c + 1] += count[c];
-  for (int i = 0; i < n; i++) order[count[P[i].cell]++] = i;
+  for (int i = 0; i < n; i++) order[count[cell_of(i)]++] = i;
   for (int k = 0; k < n; k++) newloc[order[k]] = k;
-  std::vector<EDParticle> Q(n);
-  std::vector<int> newext(n);
-  for (int k = 0; k < n; k++) {
-    Q[k] = P[order[k]];
-    if (Q[k].cpartner >= 0) Q[k].cpartner = newloc[Q[k].cpartner];
-    if (Q[k].last_partner >= 0) Q[k].last_partner = newloc[Q[k].last_partner];
-    newext[k] = ext[order[k]];
+  std::vector<double> times(n);
+  {
+    big_vector<EDParticle> Q(n);
+    big_vector<Sched> T(n);
+    big_vector<Image> M(n);
+    big_vector<int> newext(n);
+    for (int k = 0; k < n; k++) {
+      const int o = order[k];
+      Q[k] = P[o];
+      T[k] = S[o];
+      M[k] = img[o];
+      times[k] = queue.time(o);
+      if (T[k].cpartner >= 0) T[k].cpartner = newloc[T[k].cpartner];
+      if (Q[k].last_partner >= 0) Q[k].last_partner = newloc[Q[k].last_partner];
+      newext[k] = ext[o];
+    }
+    P.swap(Q);
+    S.swap(T);
+    img.swap(M);
+    ext.swap(newext);
   }
-  P.swap(Q);
-  ext.swap(newext);
   for (int k = 0; k < n; k++) loc[ext[k]] = k;
   std::fill(head.begin(), head.end(), -1);
   for (int i = n - 1; i >= 0; i--) cell_insert(i);
-  std::vector<double> times(n);
-  for (int i = 0; i < n; i++) times[i] = P[i].et;
   queue.build(times);
   crossings_since_reorder = 0;
 }
@@ -156,17 +170,18 @@ void EventDriven::setup_cells()
   prev.assign(P.size(), -1);
   for (size_t i = 0; i < P.size(); i++) {
     EDParticle &p = P[i];
+    Sched &s = S[i];
     for (int d = 0; d < 3; d++) {
       if (d >= opt.dim) {
-        p.c[d] = 0;
-        p.img[d] = 0;
+        s.c[d] = 0;
+        img[i].k[d] = 0;
         continue;
       }
       long u = (long) std::floor((p.x[d] - opt.lo[d]) / cw[d]);
       if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
-      long img = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
-      p.img[d] = (int) img;
-      p.c[d] = (int) (u - img * nc[d]);
+      long k = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
+      img[i].k[d] = (int) k;
+      s.c[d] = (int) (u - k * nc[d]);
     }
     cell_insert((int) i);
   }
@@ -174,18 +189,17 @@ void EventDriven::setup_cells()
 
 void EventDriven::cell_insert(int i)
 {
-  EDParticle &p = P[i];
-  p.cell = (p.c[2] * nc[1] + p.c[1]) * nc[0] + p.c[0];
-  const int h = head[p.cell];
+  const int c = cell_of(i);
+  const int h = head[c];
   next[i] = h;
   prev[i] = -1;
   if (h >= 0) prev[h] = i;
-  head[p.cell] = i;
+  head[c] = i;
 }
 
 void EventDriven::cell_remove(int i)
 {
-  const int c = P[i].cell;
+  const int c = cell_of(i);
   if (prev[i] >= 0)
     next[prev[i]] = next[i];
   else
@@ -197,32 +211,48 @@ void EventDriven::cell_remove(int i)
 
 void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  EDParticle &p = P[i];
+  Sched &p = S[i];
+  const int *k = img[i].k;
   p.xt = NEVER;
   for (int d = 0; d < opt.dim; d++) {
-    const double blo = opt.lo[d] + ((double) p.c[d] + (double) p.img[d] * nc[d]) * cw[d];
-    const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) p.img[d] * nc[d]) * cw[d];
-    double tup, tdn;
-    const bool edge_lo = !opt.periodic[d] && p.c[d] == 0;
-    const bool edge_hi = !opt.periodic[d] && p.c[d] == nc[d] - 1;
+    const double v = vi[d];
     if (opt.gravity[d] == 0.0) {
-      // straight flight: only the boundary ahead can be reached
-      tup = vi[d] > 0.0 ? now + std::max(0.0, (bhi - xi[d]) / vi[d]) : NEVER;
-      tdn = vi[d] < 0.0 ? now + std::max(0.0, (blo - xi[d]) / vi[d]) : NEVER;
-    } else {
-      tup = now + crossing_time(xi[d], vi[d], opt.gravity[d], bhi, +1);
-      tdn = now + crossing_time(xi[d], vi[d], opt.gravity[d], blo, -1);
+      // straight flight: only the boundary ahead can be reached (none beyond an edge cell)
+      if (v > 0.0) {
+        if (!opt.periodic[d] && p.c[d] == nc[d] - 1) continue;
+        const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
+        const double t = now + std::max(0.0, (bhi - xi[d]) / v);
+        if (t < p.xt) {
+          p.xt = t;
+          p.xdim = (int8_t) d;
+          p.xdir = 1;
+        }
+      } else if (v < 0.0) {
+        if (!opt.periodic[d] && p.c[d] == 0) continue;
+        const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
+        const double t = now + std::max(0.0, (blo - xi[d]) / v);
+        if (t < p.xt) {
+          p.xt = t;
+          p.xdim = (int8_t) d;
+          p.xdir = -1;
+        }
+      }
+      continue;
     }
-    if (edge_hi) tup = NEVER;
-    if (edge_lo) tdn = NEVER;
+    const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
+    const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
+    double tup = now + crossing_time(xi[d], v, opt.gravity[d], bhi, +1);
+    double tdn = now + crossing_time(xi[d], v, opt.gravity[d], blo, -1);
+    if (!opt.periodic[d] && p.c[d] == nc[d] - 1) tup = NEVER;
+    if (!opt.periodic[d] && p.c[d] == 0) tdn = NEVER;
     if (tup < p.xt) {
       p.xt = tup;
-      p.xdim = d;
+      p.xdim = (int8_t) d;
       p.xdir = 1;
     }
     if (tdn < p.xt) {
       p.xt = tdn;
-      p.xdim = d;
+      p.xdim = (int8_t) d;
       p.xdir = -1;
     }
   }
@@ -232,30 +262,32 @@ void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 // around its cell; periodic images by integer offsets
 void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dhi[3])
 {
-  EDParticle &p = P[i];
+  const EDParticle &p = P[i];
+  Sched &s = S[i];
+  const int *pk = img[i].k;
   const bool gravity = has_gravity;
   for (int dz = dlo[2]; dz <= dhi[2]; dz++) {
-    int uz = p.c[2] + dz, kz = 0;
+    int uz = s.c[2] + dz, kz = 0;
     if (uz < 0) { if (!opt.periodic[2]) continue; uz += nc[2]; kz = -1; }
     else if (uz >= nc[2]) { if (!opt.periodic[2]) continue; uz -= nc[2]; kz = 1; }
     for (int dy = dlo[1]; dy <= dhi[1]; dy++) {
-      int uy = p.c[1] + dy, ky = 0;
+      int uy = s.c[1] + dy, ky = 0;
       if (uy < 0) { if (!opt.periodic[1]) continue; uy += nc[1]; ky = -1; }
       else if (uy >= nc[1]) { if (!opt.periodic[1]) continue; uy -= nc[1]; ky = 1; }
       for (int dx = dlo[0]; dx <= dhi[0]; dx++) {
-        int ux = p.c[0] + dx, kx = 0;
+        int ux = s.c[0] + dx, kx = 0;
         if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = next[j]) {
           if (j == i) continue;
           const EDParticle &q = P[j];
-          const int off[3] = {p.img[0] + kx - q.img[0], p.img[1] + ky - q.img[1],
-                              p.img[2] + kz - q.img[2]};
+          const int *qk = img[j].k;
+          const int off[3] = {pk[0] + kx - qk[0], pk[1] + ky - qk[1], pk[2] + kz - qk[2]};
           // two particles whose last collisions were with each other (same periodic image)
           // separate in free flight: relative motion is a straight line
-          if (p.last_partner == j && q.last_partner == i && off[0] == p.last_off[0] &&
-              off[1] == p.last_off[1] && off[2] == p.last_off[2])
+          if (p.last_partner == j && q.last_partner == i && off[0] == s.last_off[0] &&
+              off[1] == s.last_off[1] && off[2] == s.last_off[2])
             continue;
           const Vec3 shift(off[0] * L.x, off[1] * L.y, off[2] * L.z);
           const double dtj = now - q.t;
@@ -265,11 +297,11 @@ void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dh
             vj += dtj * opt.gravity;
           }
           const double t = now + pair_contact_time(xi - xj, vi - vj, p.a + q.a);
-          if (t < p.ct) {
-            p.ct = t;
-            p.cpartner = j;
-            p.ccount = q.ncoll;
-            for (int d = 0; d < 3; d++) p.coff[d] = off[d];
+          if (t < s.ct) {
+            s.ct = t;
+            s.cpartner = j;
+            s.ccount = q.ncoll;
+            for (int d = 0; d < 3; d++) s.coff[d] = off[d];
           }
         }
       }
@@ -294,7 +326,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
           int u[3], k[3];
           bool skip = false;
           for (int m = 0; m < 3 && !skip; m++) {
-            u[m] = p.c[m] + d[m];
+            u[m] = S[i].c[m] + d[m];
             k[m] = 0;
             if (u[m] < 0 || u[m] >= nc[m]) {
               if (!opt.periodic[m] || nc[m] < 3) skip = true;    // (under 3 cells: not searched)
@@ -310,8 +342,9 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
             const long ki = key(i), kj = key(j);
             if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
             if (!counted(ki <= kj ? i : j)) continue;
-            const Vec3 shift((p.img[0] + k[0] - q.img[0]) * L.x, (p.img[1] + k[1] - q.img[1]) * L.y,
-                             (p.img[2] + k[2] - q.img[2]) * L.z);
+            const int *pk = img[i].k, *qk = img[j].k;
+            const Vec3 shift((pk[0] + k[0] - qk[0]) * L.x, (pk[1] + k[1] - qk[1]) * L.y,
+                             (pk[2] + k[2] - qk[2]) * L.z);
             const double dist = norm(xi - pos(j, now) - shift), sigma = p.a + q.a;
             if (dist < sigma * (1.0 - tol)) {
               count++;
@@ -327,20 +360,22 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
   return count;
 }
 
-void EventDriven::schedule(int i)
+double EventDriven::schedule(int i)
 {
-  EDParticle &p = P[i];
+  Sched &p = S[i];
+  double et;
   if (p.ct <= p.xt) {
-    p.et = p.ct;
+    et = p.ct;
     p.ekind = p.ct < NEVER ? COLLISION : NONE;
   } else {
-    p.et = p.xt;
+    et = p.xt;
     p.ekind = CROSSING;
   }
-  if (p.wt < p.et) {
-    p.et = p.wt;
+  if (p.wt < et) {
+    et = p.wt;
     p.ekind = WALL;
   }
+  return et;
 }
 
 // next contact of the particle's surface with a wall, moving toward it
@@ -490,23 +525,25 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
 
 void EventDriven::predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  EDParticle &p = P[i];
+  Sched &p = S[i];
   p.wt = NEVER;
   p.wall = -1;
+  if (opt.walls.empty()) return;
+  const double a = P[i].a;
   for (int k = 0; k < (int) opt.walls.size(); k++) {
     const EDWall &w = opt.walls[k];
     const int d = w.dim;
     double t;
     if (w.vibrating() && w.sine)
-      t = sine_contact(w, clock, now, xi[d], vi[d], opt.gravity[d], p.a);
+      t = sine_contact(w, clock, now, xi[d], vi[d], opt.gravity[d], a);
     else if (w.vibrating())
-      t = vibrating_contact(w, clock, now, xi[d], vi[d], opt.gravity[d], p.a);
+      t = vibrating_contact(w, clock, now, xi[d], vi[d], opt.gravity[d], a);
     else
-      t = now + (w.side < 0 ? crossing_time(xi[d], vi[d], opt.gravity[d], w.pos + p.a, -1)
-                            : crossing_time(xi[d], vi[d], opt.gravity[d], w.pos - p.a, +1));
+      t = now + (w.side < 0 ? crossing_time(xi[d], vi[d], opt.gravity[d], w.pos + a, -1)
+                            : crossing_time(xi[d], vi[d], opt.gravity[d], w.pos - a, +1));
     if (t < p.wt) {
       p.wt = t;
-      p.wall = k;
+      p.wall = (int8_t) k;
     }
   }
 }
@@ -552,9 +589,10 @@ Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n,
 void EventDriven::collide_wall(int i)
 {
   EDParticle &p = P[i];
-  const double t = p.wt;
+  Sched &s = S[i];
+  const double t = s.wt;
   advance(i, t);
-  const EDWall &w = opt.walls[p.wall];
+  const EDWall &w = opt.walls[s.wall];
   Vec3 n;
   n[w.dim] = w.side < 0 ? 1.0 : -1.0;
   LawParams law = w.laws[p.type];
@@ -583,8 +621,8 @@ void EventDriven::collide_wall(int i)
   if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
   p.ncoll++;
   p.last_partner = -1;
-  if (history) history->push_back({t, ext[i], -1 - p.wall, p.v, p.w, Vec3(), Vec3()});
-  const long ni = ++p.ncollisions;
+  if (history) history->push_back({t, ext[i], -1 - s.wall, p.v, p.w, Vec3(), Vec3()});
+  const long ni = ++s.ncollisions;
   if (counted(i)) {
     stats.wall_collisions++;
     stats.dE_wall += c.dE;
@@ -606,7 +644,7 @@ void EventDriven::collide_wall(int i)
 
 void EventDriven::predict(int i)
 {
-  EDParticle &p = P[i];
+  Sched &p = S[i];
   const Vec3 xi = pos(i, now), vi = vel(i, now);
   predict_crossing(i, xi, vi);
   predict_wall(i, xi, vi);
@@ -615,7 +653,6 @@ void EventDriven::predict(int i)
   const int zr = opt.dim == 3 ? 1 : 0;
   int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
   scan(i, xi, vi, dlo, dhi);
-  schedule(i);
 }
 
 // ---------------------------------------------------------------- events
@@ -623,12 +660,13 @@ void EventDriven::predict(int i)
 void EventDriven::collide_pair(int i)
 {
   EDParticle &p = P[i];
-  const int j = p.cpartner;
+  Sched &s = S[i];
+  const int j = s.cpartner;
   EDParticle &q = P[j];
-  const double t = p.ct;
+  const double t = s.ct;
   advance(i, t);
   advance(j, t);
-  const Vec3 r = p.x - q.x - Vec3(p.coff[0] * L.x, p.coff[1] * L.y, p.coff[2] * L.z);
+  const Vec3 r = p.x - q.x - Vec3(s.coff[0] * L.x, s.coff[1] * L.y, s.coff[2] * L.z);
   const Vec3 n = (1.0 / norm(r)) * r;
 
   LawParams law = laws[p.type * (ntypes + 1) + q.type];
@@ -653,12 +691,12 @@ void EventDriven::collide_pair(int i)
   p.last_partner = j;
   q.last_partner = i;
   for (int d = 0; d < 3; d++) {
-    p.last_off[d] = p.coff[d];
-    q.last_off[d] = -p.coff[d];
+    s.last_off[d] = s.coff[d];
+    S[j].last_off[d] = -s.coff[d];
   }
   const bool book = counted(key(i) <= key(j) ? i : j);
   if (history) history->push_back({t, ext[i], ext[j], p.v, p.w, q.v, q.w});
-  const long ni = ++p.ncollisions, nj = ++q.ncollisions;
+  const long ni = ++s.ncollisions, nj = ++S[j].ncollisions;
   if (counted(i)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
   if (counted(j)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, nj);
   if (book) {
@@ -689,22 +727,23 @@ void EventDriven::collide_pair(int i)
 
 void EventDriven::cross(int i)
 {
-  EDParticle &p = P[i];
+  EDParticle &q = P[i];
+  Sched &p = S[i];
   const int d = p.xdim, dir = p.xdir;
   advance(i, p.xt);
   cell_remove(i);
   p.c[d] += dir;
   if (p.c[d] == nc[d]) {
     p.c[d] = 0;
-    p.img[d]++;
+    img[i].k[d]++;
   } else if (p.c[d] < 0) {
     p.c[d] = nc[d] - 1;
-    p.img[d]--;
+    img[i].k[d]--;
   }
   cell_insert(i);
   stats.crossings++;
   crossings_since_reorder++;
-  const Vec3 xi = p.x, vi = p.v;    // advanced to now above
+  const Vec3 xi = q.x, vi = q.v;    // advanced to now above
   predict_crossing(i, xi, vi);
   if (p.ct < NEVER && P[p.cpartner].ncoll != p.ccount) {
     // the stored collision candidate went stale: look at every neighbouring cell
@@ -721,7 +760,6 @@ void EventDriven::cross(int i)
     if (nc[d] < 3) dlo[d] = -1, dhi[d] = 1;    // with fewer than 3 cells every cell is new
     scan(i, xi, vi, dlo, dhi);
   }
-  schedule(i);
   reschedule(i);
 }
 
@@ -729,38 +767,44 @@ void EventDriven::start()
 {
   now = 0.0;
   const int n = (int) P.size();
+  for (auto &s : S) s.ncollisions = 0;
   for (auto &p : P) {
     p.t = 0.0;
     p.ncoll = 0;
     p.last_partner = -1;
-    p.ncollisions = 0;
     if (opt.dim == 2) {
       p.v.z = 0.0;
       p.w.x = p.w.y = 0.0;
     }
   }
   setup_cells();
-  for (int i = 0; i < n; i++) predict(i);
-  reorder();    // also builds the queue
+  std::vector<double> times(n);
+  for (int i = 0; i < n; i++) {
+    predict(i);
+    times[i] = schedule(i);
+  }
+  queue.build(times);
+  reorder();
 }
 
 EDStats EventDriven::advance_to(double t_end)
 {
   stats = EDStats();
   stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
-  for (auto &p : P) p.ncollisions = 0;
+  for (auto &s : S) s.ncollisions = 0;
   const int n = (int) P.size();
   if (crossings_since_reorder > 4L * n) reorder();
   size_t g = 0;
   while (n > 0) {
     const int i = queue.top();
-    EDParticle &p = P[i];
-    if (g < gtimes.size() && gtimes[g] < t_end && !(p.et < gtimes[g])) {
+    const double et = queue.top_time();
+    const Sched &p = S[i];
+    if (g < gtimes.size() && gtimes[g] < t_end && !(et < gtimes[g])) {
       global_event((int) g++);
       continue;
     }
-    if (!(p.et < t_end)) break;
-    now = p.et;
+    if (!(et < t_end)) break;
+    now = et;
     if (p.ekind == COLLISION) {
       if (P[p.cpartner].ncoll != p.ccount) {
         predict(i);    // the partner changed course: stale prediction
@@ -817,7 +861,7 @@ void EventDriven::global_event(int k)
   std::vector<double> times(n);
   for (int i = 0; i < n; i++) {
     predict(i);
-    times[i] = P[i].et;
+    times[i] = schedule(i);
   }
   queue.build(times);
 }
@@ -827,11 +871,12 @@ void EventDriven::rebase(double dt)
   // the same shift for every time keeps the heap ordered (rounding is monotone)
   for (auto &p : P) {
     p.t -= dt;
-    p.et -= dt;
-    p.ct -= dt;
-    p.xt -= dt;
-    p.wt -= dt;
     p.t_last -= dt;
+  }
+  for (auto &s : S) {
+    s.ct -= dt;
+    s.xt -= dt;
+    s.wt -= dt;
   }
   queue.shift(dt);
   now -= dt;

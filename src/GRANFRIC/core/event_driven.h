@@ -13,6 +13,7 @@
 
 #include "collision.h"
 #include "event_queue.h"
+#include "huge_alloc.h"
 #include "prediction.h"
 
 #include <cstdint>
@@ -23,34 +24,19 @@
 
 namespace granfric {
 
-struct EDParticle {
-  // input (window time 0)
-  Vec3 x, v, w;               // position (unwrapped), velocity, angular velocity
-  double a = 0.5, m = 1.0, q = 0.4;
-  int type = 1;
+// A particle as the user sets and reads it (x, v, w, a, m, q, type, t_last), plus the two words
+// of internal state that every candidate-partner test reads. 128 bytes: the first cache line holds
+// what a pair prediction needs (x, v, t, a), the second the rest.
+struct alignas(64) EDParticle {
+  Vec3 x, v;                  // position (unwrapped), velocity
+  double t = 0.0;             // local time of x and v (internal)
+  double a = 0.5;             // radius
+  Vec3 w;                     // angular velocity
+  double m = 1.0, q = 0.4;    // mass, moment of inertia / (m a^2)
   double t_last = -INF;       // time of the last collision (window time), for the TC model
-
-  // internal state
-  double t = 0.0;             // local time of x and v
+  int type = 1;
   uint32_t ncoll = 0;         // collisions since start(): invalidates partners' predictions
-  int last_partner = -1;      // partner of the last collision
-  int last_off[3] = {0, 0, 0};  // periodic image offset of that partner (see coff)
-  int cell = -1;              // linear cell index
-  int c[3] = {0, 0, 0};       // cell coordinates within the grid
-  int img[3] = {0, 0, 0};     // periodic image of the cell
-  long ncollisions = 0;       // collisions in this window (event cap)
-
-  // scheduled event: the earlier of the best collision candidate and the next cell crossing
-  double et = NEVER;
-  int ekind = 0;              // NONE, COLLISION, CROSSING
-  double ct = NEVER;          // collision candidate: time,
-  int cpartner = -1;          //   partner,
-  uint32_t ccount = 0;        //   partner's ncoll at prediction (stale when it changed),
-  int coff[3] = {0, 0, 0};    //   partner's unwrapped position is shifted by coff * L
-  double xt = NEVER;          // next cell crossing: time,
-  int xdim = 0, xdir = 0;     //   dimension and direction (+1 / -1)
-  double wt = NEVER;          // next wall collision: time,
-  int wall = -1;              //   which wall
+  int last_partner = -1;      // partner of the last collision (internal)
 };
 
 // A static plane wall normal to dimension dim at position pos: side -1 bounds the particles
@@ -190,7 +176,8 @@ class EventDriven {
   // bytes held (particles, index maps, cells, queue, optional records)
   size_t memory_bytes() const
   {
-    return P.capacity() * sizeof(EDParticle) + (ext.capacity() + loc.capacity()) * sizeof(int) +
+    return P.capacity() * sizeof(EDParticle) + S.capacity() * sizeof(Sched) +
+        img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
         (head.capacity() + next.capacity() + prev.capacity()) * sizeof(int) + queue.memory_bytes() +
         paths.capacity() * sizeof(double) + acct.key.capacity() * sizeof(long) +
         acct.counted.capacity() + gtimes.capacity() * sizeof(double);
@@ -205,8 +192,30 @@ class EventDriven {
   Vec3 velocity(int e, double t) const { return vel(loc[e], t); }
 
  private:
-  std::vector<EDParticle> P;             // internal order
-  std::vector<int> ext, loc;             // internal -> external index, and back
+  big_vector<EDParticle> P;             // internal order
+  // a particle's own event bookkeeping, read only when it is predicted or processed
+  struct Sched {
+    int c[3] = {0, 0, 0};     // cell coordinates within the grid
+    int cpartner = -1;        // collision candidate: partner,
+    uint32_t ccount = 0;      //   partner's ncoll at prediction (stale when it changed),
+    int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * L
+    int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
+    double ct = NEVER;        //   and time
+    double xt = NEVER;        // next cell crossing: time,
+    double wt = NEVER;        // next wall collision: time
+    uint32_t ncollisions = 0; // collisions in this window (event cap)
+    int8_t xdim = 0, xdir = 0;    // crossing dimension and direction (+1 / -1)
+    int8_t ekind = 0;         // scheduled event: NONE, COLLISION, CROSSING, WALL
+    int8_t wall = -1;         // which wall
+  };
+  big_vector<Sched> S;
+  // periodic image of each particle's cell, read for every candidate partner (kept apart and
+  // small so the candidates' images stay in cache)
+  struct Image {
+    int k[3];
+  };
+  big_vector<Image> img;
+  big_vector<int> ext, loc;             // internal -> external index, and back
   long crossings_since_reorder = 0;
   double clock = 0.0;
   std::vector<EDEvent> *history = nullptr;
@@ -224,7 +233,7 @@ class EventDriven {
   Vec3 L;                                // box lengths
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
-  std::vector<int> head, next, prev;     // cell lists
+  big_vector<int> head, next, prev;     // cell lists
   EventQueue queue;                      // particles by event time
   EDStats stats;
   double now = 0.0;
@@ -233,6 +242,11 @@ class EventDriven {
   void reorder();
   Vec3 pos(int i, double t) const;
   Vec3 vel(int i, double t) const;
+  int cell_of(int i) const
+  {
+    const int *c = S[i].c;
+    return (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+  }
   void cell_insert(int i);
   void cell_remove(int i);
   void advance(int i, double t);
@@ -241,13 +255,13 @@ class EventDriven {
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
   // collision candidates in the block of cells at offsets dlo..dhi
   void scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dhi[3]);
-  void schedule(int i);                  // et, ekind from the candidates
+  double schedule(int i);                // ekind from the candidates; returns the event time
   void predict_wall(int i, const Vec3 &xi, const Vec3 &vi);
   void collide_wall(int i);
   Collision thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t);
   void collide_pair(int i);
   void cross(int i);
-  void reschedule(int i) { queue.update(i, P[i].et); }
+  void reschedule(int i) { queue.update(i, schedule(i)); }
 };
 
 }    // namespace granfric

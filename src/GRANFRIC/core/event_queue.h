@@ -1,89 +1,244 @@
-// GRANFRIC physics core: indexed 4-ary min-heap of particle event times. The keys live in the
-// heap itself (no indirection into particle records on every comparison); ties break by
-// particle index, so the order of events is deterministic.
+// GRANFRIC physics core: the queue of particle event times (one pending event per particle).
+//
+// A calendar queue (cf. G. Paul, J. Comput. Phys. 221, 615 (2007)): time is cut into buckets
+// of width w; a particle whose event lies in one of the next nb buckets sits in that bucket's
+// unsorted list (circular array of nb lists), a later (or never) event in an overflow list. Only
+// the current bucket is ordered, as a small indexed binary heap (the "front"). Updating an event
+// is O(1) on average (unlink, link) instead of O(log N) cache-missing heap levels, so the cost
+// per event stays flat with N. w is set at build() from the spread of the event times (about two
+// pending events per bucket near the front).
+//
+// The order is exactly that of (time, particle index): buckets are a monotone function of time,
+// so an earlier bucket holds only earlier events, and the front heap breaks ties by index. The
+// trajectory is therefore bit-for-bit the one of any other exact priority queue.
 #ifndef GRANFRIC_CORE_EVENT_QUEUE_H
 #define GRANFRIC_CORE_EVENT_QUEUE_H
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <vector>
+
+#include "huge_alloc.h"
 
 namespace granfric {
 
 class EventQueue {
  public:
-  // n particles with their event times; O(n) heapify
+  // n particles with their event times (infinite: no event); O(n)
   void build(const std::vector<double> &times)
   {
     const int n = (int) times.size();
-    heap.resize(n);
-    pos.resize(n);
-    for (int i = 0; i < n; i++) {
-      heap[i] = {times[i], i};
-      pos[i] = i;
-    }
-    for (int k = (n - 2) / 4; k >= 0 && n > 1; k--) down(k);
+    key.assign(times.begin(), times.end());
+    where.assign(n, NOWHERE);
+    nxt.assign(n, -1);
+    prv.assign(n, -1);
+    front.clear();
+    // origin at the earliest event, width from the mean lead of the finite ones
+    double tmin = INF, sum = 0.0;
+    long finite = 0;
+    for (double t : times)
+      if (t < INF) {
+        tmin = t < tmin ? t : tmin;
+        finite++;
+      }
+    for (double t : times)
+      if (t < INF) sum += t - tmin;
+    origin = finite ? tmin : 0.0;
+    nb = 16;
+    while (2 * nb < n) nb *= 2;
+    const double lead = finite ? sum / (double) finite : 0.0;
+    w = lead > 0.0 ? 2.0 * lead / (double) nb : 1.0;
+    // a width below the resolution of the times would put everything in one bucket; harmless
+    if (!(w > 0.0) || !std::isfinite(w)) w = 1.0;
+    inv_w = 1.0 / w;
+    head.assign(nb, -1);
+    overflow = -1;
+    nbucketed = 0;
+    cur = 0;
+    for (int i = 0; i < n; i++) insert(i);
+    settle();
   }
-  bool empty() const { return heap.empty(); }
-  int top() const { return heap[0].id; }
-  double top_time() const { return heap[0].t; }
+  bool empty() const { return key.empty(); }
+  // the particle with the earliest event (ties: the smallest index); with no finite event left,
+  // some particle whose event time is infinite
+  int top() const { return front.empty() ? overflow : front[0]; }
+  double top_time() const { return key[top()]; }
+  double time(int i) const { return key[i]; }
   // particle i now has event time t
   void update(int i, double t)
   {
-    const int k = pos[i];
-    const double old = heap[k].t;
-    heap[k].t = t;
-    if (t < old)
-      up(k);
-    else
-      down(k);
+    remove(i);
+    key[i] = t;
+    insert(i);
+    settle();
   }
-  // every key minus dt (monotone, so the heap stays ordered)
+  // every time minus dt (a window restarts at 0): rebuilt, so rounding cannot misplace anything
   void shift(double dt)
   {
-    for (auto &e : heap) e.t -= dt;
+    for (auto &t : key) t -= dt;
+    const std::vector<double> k(key.begin(), key.end());
+    build(k);
+  }
+  size_t memory_bytes() const
+  {
+    return key.capacity() * sizeof(double) +
+        (where.capacity() + nxt.capacity() + prv.capacity() + front.capacity() + head.capacity()) *
+        sizeof(int);
   }
 
  private:
-  struct Entry {
-    double t;
-    int id;
-  };
-  std::vector<Entry> heap;
-  std::vector<int> pos;
+  static constexpr double INF = std::numeric_limits<double>::infinity();
+  // where[i]: slot of its bucket list (>= 0; the bucket is the one of the next nb with that
+  // slot), OVER (overflow list), or FRONT - k at position k of the front heap
+  static constexpr int NOWHERE = -1, OVER = -2, FRONT = -3;
+  static constexpr int64_t BEYOND = -1;
+  big_vector<double> key;
+  big_vector<int> where;
+  big_vector<int> nxt, prv;        // bucket and overflow lists (doubly linked)
+  big_vector<int> head;             // nb circular bucket lists
+  int overflow = -1;                // overflow list
+  long nbucketed = 0;               // particles in bucket lists
+  std::vector<int> front;           // heap of the current bucket
+  double origin = 0.0, w = 1.0, inv_w = 1.0;
+  int64_t cur = 0;                  // absolute index of the current bucket
+  int nb = 16;
 
- public:
-  size_t memory_bytes() const { return heap.capacity() * sizeof(Entry) + pos.capacity() * sizeof(int); }
-
-  static bool less(const Entry &a, const Entry &b) { return a.t < b.t || (a.t == b.t && a.id < b.id); }
-  void place(int k, const Entry &e)
+  bool less(int a, int b) const { return key[a] < key[b] || (key[a] == key[b] && a < b); }
+  // absolute bucket of time t; beyond the horizon (or infinite): BEYOND
+  int64_t bucket(double t) const
   {
-    heap[k] = e;
-    pos[e.id] = k;
+    const double u = (t - origin) * inv_w;
+    if (!(u < (double) (cur + nb))) return BEYOND;
+    const int64_t b = (int64_t) std::floor(u);
+    return b > cur ? b : cur;
+  }
+  void link(int &h, int i)
+  {
+    nxt[i] = h;
+    prv[i] = -1;
+    if (h >= 0) prv[h] = i;
+    h = i;
+  }
+  void unlink(int &h, int i)
+  {
+    if (prv[i] >= 0)
+      nxt[prv[i]] = nxt[i];
+    else
+      h = nxt[i];
+    if (nxt[i] >= 0) prv[nxt[i]] = prv[i];
+  }
+  void insert(int i)
+  {
+    const int64_t b = bucket(key[i]);
+    if (b == BEYOND) {
+      where[i] = OVER;
+      link(overflow, i);
+    } else if (b == cur) {
+      push_front(i);
+    } else {
+      where[i] = (int) (b & (nb - 1));
+      link(head[where[i]], i);
+      nbucketed++;
+    }
+  }
+  void push_front(int i)
+  {
+    front.push_back(i);
+    up((int) front.size() - 1);
+  }
+  void remove(int i)
+  {
+    const int s = where[i];
+    if (s <= FRONT) {
+      const int k = FRONT - s;
+      const int last = front.back();
+      front.pop_back();
+      if (last != i) {
+        place(k, last);
+        up(k);
+        down(FRONT - where[last]);
+      }
+    } else if (s == OVER) {
+      unlink(overflow, i);
+    } else {
+      unlink(head[s], i);
+      nbucketed--;
+    }
+    where[i] = NOWHERE;
+  }
+  // make the front non-empty if any finite event is left: advance to the next occupied bucket,
+  // pulling overflow events into range at each turn of the calendar
+  void settle()
+  {
+    while (front.empty()) {
+      if (nbucketed == 0) {
+        // nothing within the horizon: jump to the earliest finite overflow event
+        double tmin = INF;
+        for (int i = overflow; i >= 0; i = nxt[i]) tmin = key[i] < tmin ? key[i] : tmin;
+        if (!(tmin < INF)) return;
+        const double u = (tmin - origin) * inv_w;
+        if (u > 1e15) {
+          // far beyond the calendar's resolution: restart it there
+          std::vector<double> k(key.begin(), key.end());
+          build(k);
+          return;
+        }
+        cur = (int64_t) std::floor(u);
+        if (cur < 0) cur = 0;
+        pull_overflow();
+        continue;
+      }
+      cur++;
+      if ((cur & (nb - 1)) == 0) pull_overflow();
+      int &h = head[cur & (nb - 1)];
+      while (h >= 0) {
+        const int i = h;
+        unlink(h, i);
+        nbucketed--;
+        push_front(i);
+      }
+    }
+  }
+  void pull_overflow()
+  {
+    int i = overflow;
+    while (i >= 0) {
+      const int nexti = nxt[i];
+      if (bucket(key[i]) != BEYOND) {
+        unlink(overflow, i);
+        insert(i);
+      }
+      i = nexti;
+    }
+  }
+  void place(int k, int i)
+  {
+    front[k] = i;
+    where[i] = FRONT - k;
   }
   void up(int k)
   {
-    const Entry e = heap[k];
+    const int e = front[k];
     while (k > 0) {
-      const int parent = (k - 1) / 4;
-      if (!less(e, heap[parent])) break;
-      place(k, heap[parent]);
+      const int parent = (k - 1) / 2;
+      if (!less(e, front[parent])) break;
+      place(k, front[parent]);
       k = parent;
     }
     place(k, e);
   }
   void down(int k)
   {
-    const int n = (int) heap.size();
-    const Entry e = heap[k];
+    const int n = (int) front.size();
+    const int e = front[k];
     while (true) {
-      const int first = 4 * k + 1;
-      if (first >= n) break;
-      int best = first;
-      const int last = first + 4 < n ? first + 4 : n;
-      for (int c = first + 1; c < last; c++)
-        if (less(heap[c], heap[best])) best = c;
-      if (!less(heap[best], e)) break;
-      place(k, heap[best]);
-      k = best;
+      int c = 2 * k + 1;
+      if (c >= n) break;
+      if (c + 1 < n && less(front[c + 1], front[c])) c++;
+      if (!less(front[c], e)) break;
+      place(k, front[c]);
+      k = c;
     }
     place(k, e);
   }

@@ -1,0 +1,102 @@
+// The event queue against an ordered set: the same (time, index) order under random updates,
+// ties, infinite times, far-future events and time shifts.
+#include "core/event_queue.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+#include <utility>
+#include <vector>
+
+using granfric::EventQueue;
+
+namespace {
+
+constexpr double INF = std::numeric_limits<double>::infinity();
+
+// Simulates an event loop: pop the earliest, give it a later time, sometimes change others.
+void run_against_set(int n, unsigned seed, double spread, double p_inf, double p_far, int steps)
+{
+  std::mt19937_64 gen(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  auto draw = [&](double now) {
+    const double u = U(gen);
+    if (u < p_inf) return INF;
+    if (u < p_inf + p_far) return now + 1e6 * spread * U(gen);
+    if (u < p_inf + p_far + 0.05) return now;    // ties at the current time
+    // coarse grid: many exact ties
+    return now + std::floor(U(gen) * 64.0) * spread / 16.0;
+  };
+  std::vector<double> t(n);
+  for (auto &x : t) x = draw(0.0);
+  EventQueue q;
+  q.build(t);
+  std::set<std::pair<double, int>> ref;
+  for (int i = 0; i < n; i++) ref.insert({t[i], i});
+  double now = 0.0;
+  for (int s = 0; s < steps; s++) {
+    const auto best = *ref.begin();
+    ASSERT_EQ(q.top_time(), best.first) << "step " << s;
+    if (best.first == INF) {
+      ASSERT_EQ(t[q.top()], INF);
+      break;
+    }
+    ASSERT_EQ(q.top(), best.second) << "step " << s;
+    now = best.first;
+    auto set_time = [&](int i, double x) {
+      ref.erase({t[i], i});
+      t[i] = x;
+      ref.insert({x, i});
+      q.update(i, x);
+    };
+    set_time(best.second, draw(now));
+    // a partner's prediction changes too
+    if (U(gen) < 0.5) set_time((int) (U(gen) * n), draw(now));
+    if (U(gen) < 0.001) {
+      // a new window: every time shifted
+      const double dt = now;
+      q.shift(dt);
+      std::set<std::pair<double, int>> r2;
+      for (int i = 0; i < n; i++) {
+        t[i] -= dt;
+        r2.insert({t[i], i});
+      }
+      ref.swap(r2);
+      now = 0.0;
+    }
+  }
+}
+
+}    // namespace
+
+TEST(EventQueue, OrderEqualsSortedSet)
+{
+  run_against_set(1000, 1, 1.0, 0.0, 0.0, 200000);
+}
+
+TEST(EventQueue, InfiniteAndFarEvents)
+{
+  run_against_set(500, 2, 1.0, 0.2, 0.02, 100000);
+}
+
+TEST(EventQueue, SmallAndSingle)
+{
+  run_against_set(1, 3, 1.0, 0.1, 0.1, 1000);
+  run_against_set(3, 4, 1.0, 0.1, 0.1, 10000);
+}
+
+TEST(EventQueue, AllInfiniteThenFinite)
+{
+  EventQueue q;
+  q.build(std::vector<double>(10, INF));
+  EXPECT_EQ(q.top_time(), INF);
+  q.update(7, 3.0);
+  EXPECT_EQ(q.top(), 7);
+  q.update(2, 1e300);
+  q.update(7, INF);
+  EXPECT_EQ(q.top(), 2);
+  EXPECT_EQ(q.top_time(), 1e300);
+}
