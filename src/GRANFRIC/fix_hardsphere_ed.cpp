@@ -186,9 +186,21 @@ void FixHardsphereED::setup(int)
   int any;
   MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
   if (any) error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0");
-  configure_core(core_options());
-  queue_valid = false;    // a new run may bring new coefficients, a new box or new atoms
-  check_overlaps = true;
+  // A new run may bring new coefficients, a new box, new walls or new atoms. The event queue of
+  // the last run is kept only if the core's configuration is the same in every respect; the
+  // atoms themselves are compared at the first window (as between steps). Vibrating walls
+  // depend on the absolute time, which reset_timestep can change: always start afresh then.
+  const granfric::EDOptions o = core_options();
+  bool vibrating = false;
+  for (const auto &w : o.walls) vibrating = vibrating || w.vibrating();
+  const bool same = queue_valid && !vibrating && ed.size() > 0 &&
+      ed.configured_as(o, atom->ntypes, law_table()) &&
+      ed.particle(0).q == pair->shape_factor();
+  if (!same) {
+    configure_core(o);
+    queue_valid = false;
+  }
+  check_overlaps = true;    // (a kept queue continues an exact trajectory: nothing to check)
 }
 
 // once per run, after the first window's start: warn about overlapping atoms (usually a
@@ -250,13 +262,18 @@ granfric::EDOptions FixHardsphereED::core_options() const
   return o;
 }
 
-void FixHardsphereED::configure_core(const granfric::EDOptions &o)
+std::vector<granfric::LawParams> FixHardsphereED::law_table() const
 {
   const int nt = atom->ntypes;
   std::vector<granfric::LawParams> laws((nt + 1) * (nt + 1));
   for (int i = 1; i <= nt; i++)
     for (int j = 1; j <= nt; j++) laws[i * (nt + 1) + j] = pair->law(i, j);
-  ed.configure(o, nt, laws);
+  return laws;
+}
+
+void FixHardsphereED::configure_core(const granfric::EDOptions &o)
+{
+  ed.configure(o, atom->ntypes, law_table());
 }
 
 // every rank's send buffer, concatenated in rank order into recv (counts and displs say where
@@ -464,6 +481,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
   if (reuse) {
     ed.rebase(prev_dt);
     ed.set_clock(t0);
+    check_overlaps = false;
   } else {
     configure_core(core_options());
     const double q = pair->shape_factor();
@@ -623,6 +641,9 @@ void FixHardsphereED::restart(char *buf)
   const auto *d = reinterpret_cast<const double *>(buf);
   const int n = std::min((int) d[0], (int) NVECTOR);
   memcpy(totals, d + 1, n * sizeof(double));
+  // rebuilds are work done by this fix instance (reading a restart always costs one), not a
+  // property of the trajectory: counted afresh, so a restarted run reports what a continuous one does
+  totals[QUEUE_REBUILDS] = 0.0;
 }
 
 int FixHardsphereED::pack_restart(int i, double *buf)

@@ -105,6 +105,7 @@ class FixHardsphereED : public Fix {
   double widen;                          // adaptive factor on top of reach (>= 1)
 
   granfric::EDOptions core_options() const;
+  std::vector<granfric::LawParams> law_table() const;
   void configure_core(const granfric::EDOptions &o);
   double window_start_time() const;
   static void shift_image(imageint &image, const int *dimg);

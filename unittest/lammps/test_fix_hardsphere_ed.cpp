@@ -185,6 +185,28 @@ TEST(FixHardsphereED, RestartContinuesTheTrajectory)
       << "the kick counter is kept in the restart file (kicks at t = 0, 1/3, ..., 11/3)";
 }
 
+// Consecutive runs keep the event queue when nothing changed (no rebuild, the trajectory of
+// one long run), and rebuild it when the configuration did (new pair coefficients).
+TEST(FixHardsphereED, QueueKeptAcrossRunsUnlessConfigurationChanges)
+{
+  const std::string setup = gas(2, 150, 22.0, 7) +
+      "pair_style hardsphere/rough\npair_coeff * * 0.9 0.2\nfix ed all hardsphere/ed\n"
+      "timestep 0.1\nthermo 0\n";
+  auto a = make_lammps();
+  run(a.get(), setup + "run 30 post no");
+  Reference ra = reference_of(a.get());
+  a.reset();
+  auto b = make_lammps();
+  run(b.get(), setup + "run 10 post no\nrun 10 post no\nrun 10 post no");
+  auto *fix = b->modify->get_fix_by_id("ed");
+  EXPECT_EQ(fix->compute_vector(5), 1.0) << "one build for three runs of an unchanged system";
+  EXPECT_LT(max_deviation(b.get(), ra), 1e-12) << "split runs follow the one-run trajectory";
+  run(b.get(), "pair_coeff * * 0.8 0.2\nrun 5 post no");
+  EXPECT_EQ(fix->compute_vector(5), 2.0) << "new coefficients: the queue must be rebuilt";
+  run(b.get(), "velocity all scale 1.5\nrun 5 post no");
+  EXPECT_EQ(fix->compute_vector(5), 3.0) << "velocities changed by a command: rebuilt";
+}
+
 // r = 0.5 at area fraction 0.6: inelastic collapse without the TC model
 std::string collapsing()
 {

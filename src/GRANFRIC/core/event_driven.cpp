@@ -52,6 +52,39 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
       throw std::invalid_argument("a non-periodic dimension needs at least one wall");
 }
 
+static bool same_law(const LawParams &a, const LawParams &b)
+{
+  return a.kind == b.kind && a.r == b.r && a.rt_max == b.rt_max && a.mu_s == b.mu_s && a.mu_d == b.mu_d;
+}
+
+static bool same_laws(const std::vector<LawParams> &a, const std::vector<LawParams> &b)
+{
+  if (a.size() != b.size()) return false;
+  for (size_t k = 0; k < a.size(); k++)
+    if (!same_law(a[k], b[k])) return false;
+  return true;
+}
+
+bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<LawParams> &table) const
+{
+  if (o.dim != opt.dim || nt != ntypes || !same_laws(table, laws) ||
+      o.gravity.x != opt.gravity.x || o.gravity.y != opt.gravity.y || o.gravity.z != opt.gravity.z ||
+      o.tc != opt.tc || o.max_collisions != opt.max_collisions || o.gamma_bins != opt.gamma_bins ||
+      o.walls.size() != opt.walls.size())
+    return false;
+  for (int d = 0; d < 3; d++)
+    if (o.lo[d] != opt.lo[d] || o.hi[d] != opt.hi[d] || o.periodic[d] != opt.periodic[d] ||
+        o.open[d] != opt.open[d])
+      return false;
+  for (size_t k = 0; k < o.walls.size(); k++) {
+    const EDWall &a = o.walls[k], &b = opt.walls[k];
+    if (a.dim != b.dim || a.side != b.side || a.pos != b.pos || a.T != b.T || a.seed != b.seed ||
+        a.A != b.A || a.omega != b.omega || a.sine != b.sine || !same_laws(a.laws, b.laws))
+      return false;
+  }
+  return true;
+}
+
 Vec3 EventDriven::pos(int i, double t) const
 {
   const EDParticle &p = P[i];
@@ -266,6 +299,44 @@ void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dh
   Sched &s = S[i];
   const int *pk = img[i].k;
   const bool gravity = has_gravity;
+  // one candidate j in the cell at image shift (kx, ky, kz) from i's
+  auto test = [&](int j, int kx, int ky, int kz) __attribute__((always_inline)) {
+    const EDParticle &q = P[j];
+    const int *qk = img[j].k;
+    const int off[3] = {pk[0] + kx - qk[0], pk[1] + ky - qk[1], pk[2] + kz - qk[2]};
+    // two particles whose last collisions were with each other (same periodic image)
+    // separate in free flight: relative motion is a straight line
+    if (p.last_partner == j && q.last_partner == i && off[0] == s.last_off[0] &&
+        off[1] == s.last_off[1] && off[2] == s.last_off[2])
+      return;
+    const double dtj = now - q.t;
+    Vec3 xj = q.x + dtj * q.v, vj = q.v;
+    if (off[0] | off[1] | off[2]) xj += Vec3(off[0] * L.x, off[1] * L.y, off[2] * L.z);
+    if (gravity) {
+      xj += (0.5 * dtj * dtj) * opt.gravity;
+      vj += dtj * opt.gravity;
+    }
+    const double t = now + pair_contact_time(xi - xj, vi - vj, p.a + q.a);
+    if (t < s.ct) {
+      s.ct = t;
+      s.cpartner = j;
+      s.ccount = q.ncoll;
+      for (int d = 0; d < 3; d++) s.coff[d] = off[d];
+    }
+  };
+  // the usual case: the block of cells lies inside the grid (no wrapping, no edges)
+  bool inside = true;
+  for (int d = 0; d < 3; d++) inside = inside && s.c[d] + dlo[d] >= 0 && s.c[d] + dhi[d] < nc[d];
+  if (inside) {
+    for (int dz = dlo[2]; dz <= dhi[2]; dz++)
+      for (int dy = dlo[1]; dy <= dhi[1]; dy++) {
+        const int row = ((s.c[2] + dz) * nc[1] + s.c[1] + dy) * nc[0] + s.c[0];
+        for (int dx = dlo[0]; dx <= dhi[0]; dx++)
+          for (int j = head[row + dx]; j >= 0; j = next[j])
+            if (j != i) test(j, 0, 0, 0);
+      }
+    return;
+  }
   for (int dz = dlo[2]; dz <= dhi[2]; dz++) {
     int uz = s.c[2] + dz, kz = 0;
     if (uz < 0) { if (!opt.periodic[2]) continue; uz += nc[2]; kz = -1; }
@@ -279,31 +350,8 @@ void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dh
         if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
-        for (int j = head[cell]; j >= 0; j = next[j]) {
-          if (j == i) continue;
-          const EDParticle &q = P[j];
-          const int *qk = img[j].k;
-          const int off[3] = {pk[0] + kx - qk[0], pk[1] + ky - qk[1], pk[2] + kz - qk[2]};
-          // two particles whose last collisions were with each other (same periodic image)
-          // separate in free flight: relative motion is a straight line
-          if (p.last_partner == j && q.last_partner == i && off[0] == s.last_off[0] &&
-              off[1] == s.last_off[1] && off[2] == s.last_off[2])
-            continue;
-          const Vec3 shift(off[0] * L.x, off[1] * L.y, off[2] * L.z);
-          const double dtj = now - q.t;
-          Vec3 xj = q.x + dtj * q.v + shift, vj = q.v;
-          if (gravity) {
-            xj += (0.5 * dtj * dtj) * opt.gravity;
-            vj += dtj * opt.gravity;
-          }
-          const double t = now + pair_contact_time(xi - xj, vi - vj, p.a + q.a);
-          if (t < s.ct) {
-            s.ct = t;
-            s.cpartner = j;
-            s.ccount = q.ncoll;
-            for (int d = 0; d < 3; d++) s.coff[d] = off[d];
-          }
-        }
+        for (int j = head[cell]; j >= 0; j = next[j])
+          if (j != i) test(j, kx, ky, kz);
       }
     }
   }

@@ -126,6 +126,8 @@ class EventDriven {
   // laws: (ntypes+1)^2 table indexed [itype * (ntypes+1) + jtype]
   void configure(const EDOptions &opt, int ntypes, const std::vector<LawParams> &laws);
   const EDOptions &options() const { return opt; }
+  // true if configure(o, ntypes, laws) would change nothing (a kept event queue stays valid)
+  bool configured_as(const EDOptions &o, int ntypes, const std::vector<LawParams> &laws) const;
 
   // particles by external index 0..n-1 (the order they were given in); internally they are
   // kept in cell order for memory locality
