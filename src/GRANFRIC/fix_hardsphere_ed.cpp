@@ -356,9 +356,9 @@ void FixHardsphereED::shift_image(imageint &image, const int *dimg)
 
 // what the gathered window writes for core particle s at window time t: position in LAMMPS's
 // frame (less the stored periods), velocity, spin
-void FixHardsphereED::written_state(int s, double t, double *w) const
+void FixHardsphereED::written_state(int s, double t, double *w, const granfric::Vec3 *xs) const
 {
-  ed.position(s, t).to(w);
+  (xs ? *xs : ed.position(s, t)).to(w);
   const int *off = &offset[(size_t) s * 3];
   for (int d = 0; d < 3; d++)
     if (domain->periodicity[d]) w[d] -= off[d] * domain->prd[d];
@@ -556,7 +556,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     if (i < 0) continue;
     const granfric::EDParticle &p = ed.particle(s);
     double w[9];
-    written_state(s, dt, w);
+    written_state(s, dt, w, &xs);
     shift_image(image[i], dimg);
     memcpy(x[i], w, 3 * sizeof(double));
     memcpy(v[i], w + 3, 3 * sizeof(double));
