@@ -93,3 +93,33 @@ def mean_energy_changes(law, coeffs, q, dim, Ttr, Trot, n=20000, seed=1):
         raise ValueError(f"invalid {law} coefficients {coeffs}")
     keys = ("tr", "tr_se", "rot", "rot_se", "total", "total_se", "sliding")
     return dict(zip(keys, (float(x) for x in out)))
+
+
+def collide_batch(law, coeffs, v1, w1, v2, w2, n, m=1.0, a=0.5, q=0.4, want_dE=False):
+    """Apply law (as in collide) in place to many contacts of equal particles (mass m, radius a,
+    shape factor q): v1, w1, v2, w2 and the unit normals n (from 2 to 1) are (k, 3) float64
+    C-contiguous arrays; the map is applied as given (select approaching pairs first). One C++
+    call for all k contacts. Returns the energy changes (k,) if want_dE, else None."""
+    arrays = (v1, w1, v2, w2, n)
+    k = len(v1)
+    for x in arrays:
+        if not (isinstance(x, np.ndarray) and x.dtype == np.float64 and x.shape == (k, 3)
+                and x.flags.c_contiguous):
+            raise ValueError("collide_batch needs (k, 3) C-contiguous float64 arrays")
+    for x in arrays[:4]:
+        if not x.flags.writeable:
+            raise ValueError("collide_batch updates v1, w1, v2, w2 in place: they must be writeable")
+    c = np.array(coeffs, dtype=float)
+    dE = np.zeros(k) if want_dE else None
+    d = ctypes.POINTER(ctypes.c_double)
+    f = lib().granfric_collide_batch
+    f.argtypes = [ctypes.c_int, d, ctypes.c_long, ctypes.c_double, ctypes.c_double,
+                  ctypes.c_double, d, d, d, d, d, d]
+    f.restype = ctypes.c_int
+    ptr = lambda x: x.ctypes.data_as(d) if x is not None else None
+    rc = f(_LAWS[law], ptr(c), k, m, a, q, *(ptr(x) for x in arrays), ptr(dE))
+    if rc == -3:
+        raise ValueError(f"invalid body m={m} a={a} q={q}")
+    if rc != 0:
+        raise ValueError(f"invalid {law} coefficients {coeffs}")
+    return dE

@@ -1,38 +1,82 @@
-"""The cooling scene (examples/cooling) against the homogeneous-cooling theory of Luding et al.
+"""The cooling scene (examples/cooling) against the homogeneous-cooling theories of Luding et al.
 1998: dilute (fraction 0.05, N = 4096), after the paper's elastic equilibration, over the first
-~5 collisions per particle (T_tr falls to ~0.4), averaged over 8 seeds (1/sqrt(8 N) noise).
+~4 collisions per particle in 2D and ~8 in 3D (T_tr falls to ~0.4), averaged over 16 seeds.
 
-Measured (examples/cooling/README.md): T_tr follows the mean-field theory within 1.5 %, but the
-simulated T_rot and R lie 2-4 % below it from the first collisions on (-1.5 % at t = 5, about
--3 % at t = 10-20, in 2D and 3D), growing to ~10 % later, before clustering. The mean-field
-theory assumes uncorrelated Gaussian translational and rotational velocities; the collision
-averages it is built from agree with Monte Carlo through the C++ law to 0.1 %
-(test_cooling_theory.py), and the collision frequency with Enskog's to 1 %, so we read the gap
-as the known limit of that theory, not as an integrator error. The 3 % acceptance of the issue
-therefore holds for T_tr only; T_rot and R are held to 5 % here, the measured state."""
+Two theories (examples/cooling/README.md):
+- the mean-field ODEs (granfric.cooling: independent Gaussian translations and spins). T_tr
+  follows them within 1.5 %, but T_rot and R lie 2-4.5 % below them by t = 10-20: that is the
+  closure error of the Gaussian ansatz. The kinetic theory without it (DSMC of the homogeneous
+  Enskog-Boltzmann equation through the same C++ law, granfric.dsmc) puts the mean field above
+  the true T_rot by +2.6/+1.1/+3.2 % at t = 11 and +3.4/+1.8/+4.0 % at t = 18 (2D beta = 0,
+  2D beta = 0.5, 3D beta = 0), and R likewise. T_rot and R are therefore held to 5 % of the mean
+  field here, the measured state.
+- the kinetic theory itself (DSMC), which the simulation must follow within 3 % (the issue's
+  criterion) in T_tr, T_rot and R. Over blocks of the window the block-averaged deviation must
+  be below 3 %, and each block must resolve it: its standard error (the seeds' scatter of the
+  block averages, and DSMC's) below 1 %, so a 3 % deviation would show at >= 3 sigma.
+  Measured: the largest block deviations are 0.4-1.5 % except in 2D beta = 0.5, where T_rot and
+  R fall ~2 % short of the kinetic theory at t = 12-20 (T_rot -2.2 +- 0.5 %, R -2.6 +- 0.8 %):
+  within 3 %, but the 2-sigma band reaches 3.2 % and 4.2 % there, so 3 % is not established at
+  that confidence (README "Simulation against the kinetic theory": pre-collision velocity
+  correlations, beyond the Enskog-Boltzmann equation).
+"""
+import math
+
 import numpy as np
 import pytest
 
 from granfric import luding
 
-SEEDS = tuple(range(101, 109))
+SEEDS = tuple(range(101, 117))
+CASES = [(2, 0.0), (2, 0.5), (3, 0.0)]
+_cache = {}
 
 
-def averaged(dim, r, beta, phi, tend, tmp_path, seeds):
-    runs = [luding.simulate(dim, r, beta, phi, tend, str(tmp_path / f"log.{dim}.{s}"), seed=s)
-            for s in seeds]
-    return {k: np.mean([x[k] for x in runs], axis=0) for k in runs[0]}
+def runs(dim, beta, tmp_path_factory):
+    """The ED runs of a case (one set per test session, shared by the tests below)."""
+    if (dim, beta) not in _cache:
+        tmp = tmp_path_factory.mktemp(f"cool{dim}d_b{beta}")
+        _cache[(dim, beta)] = [luding.simulate(dim, 0.9, beta, 0.05, 20.0, str(tmp / f"log.{s}"), seed=s)
+                               for s in SEEDS]
+    return _cache[(dim, beta)]
 
 
-@pytest.mark.parametrize("dim,beta", [(2, 0.0), (2, 0.5), (3, 0.0)])
-def test_dilute_cooling_follows_theory(tmp_path, dim, beta):
-    d = averaged(dim, 0.9, beta, 0.05, 20.0, tmp_path, SEEDS)
+@pytest.mark.parametrize("dim,beta", CASES)
+def test_dilute_cooling_follows_mean_field_theory(tmp_path_factory, dim, beta):
+    d, _ = luding.average(runs(dim, beta, tmp_path_factory))
     c = luding.compare(d, dim, 0.9, beta, 0.05)
     grown = d["Time"] >= 4.0    # T_rot has grown from 0 to a measurable level
     assert np.max(np.abs(d["c_T[1]"] / c["Ttr_th"] - 1)) < 0.03
     assert np.max(np.abs(d["c_T[2]"][grown] / c["Trot_th"][grown] - 1)) < 0.05
     assert np.max(np.abs(d["c_T[3]"][grown] / c["R_th"][grown] - 1)) < 0.05
     assert d["c_T[1]"][-1] < 0.7    # it did cool
+
+
+BLOCKS = [(0.0, 4.0), (4.0, 8.0), (8.0, 12.0), (12.0, 16.0), (16.0, 20.0)]
+
+
+@pytest.mark.parametrize("dim,beta", CASES)
+def test_dilute_cooling_follows_kinetic_theory_within_3_percent(tmp_path_factory, dim, beta):
+    rs = runs(dim, beta, tmp_path_factory)
+    t = rs[0]["Time"]
+    ks = luding.kinetic(dim, 0.9, beta, 0.05, t, np.mean([x["c_T[1]"][0] for x in rs]),
+                        N=25000, runs=8, seed=23)
+    blocks = {}
+    for key, col in luding.SIM.items():
+        x, e = ks[key]
+        for a, b in BLOCKS:
+            if key != "Ttr" and a < 4.0:
+                continue    # T_rot and R start from 0: compare once they have grown
+            m = (t > a) & (t <= b)
+            per_seed = np.array([np.mean(r[col][m] / x[m] - 1) for r in rs])
+            se = math.hypot(per_seed.std(ddof=1) / math.sqrt(len(rs)), np.mean(e[m] / x[m]))
+            blocks[(key, a, b)] = (per_seed.mean(), se)
+    table = "; ".join(f"{k} {a:g}-{b:g}: {100 * d:+.2f} +- {100 * se:.2f} %"
+                      for (k, a, b), (d, se) in blocks.items())
+    # the check has the resolution it claims: every block resolves a 3 % deviation at >= 3 sigma
+    assert max(se for _, se in blocks.values()) < 0.01, table
+    outside = [k for k, (d, se) in blocks.items() if abs(d) >= 0.03]
+    assert not outside, f"|deviation| >= 3 % in {outside}: {table}"
 
 
 def test_elastic_rough_gas_equipartitions_and_conserves_energy(tmp_path):

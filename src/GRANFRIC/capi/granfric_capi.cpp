@@ -83,4 +83,37 @@ int granfric_collide(int law, const double *c, const double *body1, const double
   out[18] = r.energy_created ? 1.0 : 0.0;
   return 0;
 }
+
+// Batch form of granfric_collide for n contacts of equal particles (mass m, radius a, shape
+// factor q): the law is applied in place to v1, w1, v2, w2 (each n*3 doubles, pair k at 3k) with
+// unit normals nrm (n*3, from 2 to 1), as given (the caller selects approaching pairs). dE
+// (n doubles, may be null) receives the energy change of each collision. Used by the Monte Carlo
+// solution of the Boltzmann equation (tools/granfric/dsmc.py).
+int granfric_collide_batch(int law, const double *c, long n, double m, double a, double q,
+                           double *v1, double *w1, double *v2, double *w2, const double *nrm,
+                           double *dE)
+{
+  LawParams p;
+  const int rc = make_law(law, c, p);
+  if (rc) return rc;
+  if (!(m > 0.0 && m < INF && a > 0.0 && q > 0.0)) return -3;
+  Body b1, b2;
+  b1.m = b2.m = m;
+  b1.a = b2.a = a;
+  b1.q = b2.q = q;
+  for (long k = 0; k < n; k++) {
+    const long o = 3 * k;
+    b1.v = Vec3::from(v1 + o);
+    b1.w = Vec3::from(w1 + o);
+    b2.v = Vec3::from(v2 + o);
+    b2.w = Vec3::from(w2 + o);
+    const Collision r = collide(p, b1, b2, Vec3::from(nrm + o));
+    r.v1.to(v1 + o);
+    r.w1.to(w1 + o);
+    r.v2.to(v2 + o);
+    r.w2.to(w2 + o);
+    if (dE) dE[k] = r.dE;
+  }
+  return 0;
+}
 }
