@@ -133,14 +133,34 @@ void EventDriven::resize(int n)
 // external numbering (ext / loc) does not change. Deterministic: a stable sort by cell.
 void EventDriven::reorder()
 {
+  std::vector<double> times(P.size());
+  for (size_t i = 0; i < P.size(); i++) times[i] = queue.time((int) i);
+  std::vector<int> order = cell_order();
+  std::vector<double> sorted(P.size());
+  for (size_t k = 0; k < order.size(); k++) sorted[k] = times[order[k]];
+  renumber(order);
+  queue.build(sorted);
+}
+
+// particles by cell (stable: by index within a cell)
+std::vector<int> EventDriven::cell_order() const
+{
   const int n = (int) P.size();
   const int ncell = (int) head.size();
-  std::vector<int> count(ncell + 1, 0), order(n), newloc(n);
+  std::vector<int> count(ncell + 1, 0), order(n);
   for (int i = 0; i < n; i++) count[cell_of(i) + 1]++;
   for (int c = 0; c < ncell; c++) count[c + 1] += count[c];
   for (int i = 0; i < n; i++) order[count[cell_of(i)]++] = i;
+  return order;
+}
+
+// new internal index k for the particle order[k]: records, partner references, index maps and
+// cell lists follow (the queue is the caller's)
+void EventDriven::renumber(const std::vector<int> &order)
+{
+  const int n = (int) P.size();
+  std::vector<int> newloc(n);
   for (int k = 0; k < n; k++) newloc[order[k]] = k;
-  std::vector<double> times(n);
   {
     big_vector<EDParticle> Q(n);
     big_vector<Sched> T(n);
@@ -151,7 +171,6 @@ void EventDriven::reorder()
       Q[k] = P[o];
       T[k] = S[o];
       M[k] = img[o];
-      times[k] = queue.time(o);
       if (T[k].cpartner >= 0) T[k].cpartner = newloc[T[k].cpartner];
       if (Q[k].last_partner >= 0) Q[k].last_partner = newloc[Q[k].last_partner];
       newext[k] = ext[o];
@@ -164,7 +183,6 @@ void EventDriven::reorder()
   for (int k = 0; k < n; k++) loc[ext[k]] = k;
   std::fill(head.begin(), head.end(), -1);
   for (int i = n - 1; i >= 0; i--) cell_insert(i);
-  queue.build(times);
   crossings_since_reorder = 0;
 }
 
@@ -406,6 +424,86 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
         }
   }
   return count;
+}
+
+// predict() for every particle at once, all at time now (start of a window, after a global
+// event; no last partners): crossings and walls per particle, and each pair contact time
+// computed once and offered to both partners (the same time: both see one number). With fewer
+// than three cells in a dimension a neighbour cell can be reached at two image shifts, and every
+// particle scans its neighbourhood itself, as predict() does.
+void EventDriven::predict_all()
+{
+  const int n = (int) P.size();
+  bool half = true;
+  for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
+  for (int i = 0; i < n; i++) {
+    if (!half) {
+      predict(i);
+      continue;
+    }
+    Sched &p = S[i];
+    const Vec3 xi = pos(i, now), vi = vel(i, now);
+    predict_crossing(i, xi, vi);
+    predict_wall(i, xi, vi);
+    p.ct = NEVER;
+    p.cpartner = -1;
+  }
+  if (!half) return;
+  // j seen from i at the image shift off (j's position + off * L); every particle is at time
+  // now (its x and v are current)
+  auto pair = [&](int i, int j, int o0, int o1, int o2) __attribute__((always_inline)) {
+    const EDParticle &p = P[i], &q = P[j];
+    Vec3 xj = q.x;
+    if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
+    const double t = now + pair_contact_time(p.x - xj, p.v - q.v, p.a + q.a);
+    Sched &si = S[i], &sj = S[j];
+    if (t < si.ct) {
+      si.ct = t;
+      si.cpartner = j;
+      si.ccount = q.ncoll;
+      si.coff[0] = o0, si.coff[1] = o1, si.coff[2] = o2;
+    }
+    if (t < sj.ct) {
+      sj.ct = t;
+      sj.cpartner = i;
+      sj.ccount = p.ncoll;
+      sj.coff[0] = -o0, sj.coff[1] = -o1, sj.coff[2] = -o2;
+    }
+  };
+  // the forward half of the neighbourhood: 4 cells in 2d, 13 in 3d
+  int fwd[13][3], nfwd = 0;
+  for (int dz = 0; dz <= (opt.dim == 3 ? 1 : 0); dz++)
+    for (int dy = -1; dy <= 1; dy++)
+      for (int dx = -1; dx <= 1; dx++)
+        if (dz > 0 || dy > 0 || (dy == 0 && dx > 0)) {
+          fwd[nfwd][0] = dx, fwd[nfwd][1] = dy, fwd[nfwd][2] = dz;
+          nfwd++;
+        }
+  for (int i = 0; i < n; i++) {
+    const int *pk = img[i].k, *c = S[i].c;
+    for (int j = next[i]; j >= 0; j = next[j]) {    // the rest of its own cell
+      const int *qk = img[j].k;
+      pair(i, j, pk[0] - qk[0], pk[1] - qk[1], pk[2] - qk[2]);
+    }
+    bool inside = true;
+    for (int d = 0; d < opt.dim; d++) inside = inside && c[d] >= 1 && c[d] + 1 < nc[d];
+    for (int f = 0; f < nfwd; f++) {
+      int u[3], k[3] = {0, 0, 0};
+      bool skip = false;
+      for (int d = 0; d < 3; d++) {
+        u[d] = c[d] + fwd[f][d];
+        if (inside || (u[d] >= 0 && u[d] < nc[d])) continue;
+        if (!opt.periodic[d]) skip = true;
+        k[d] = u[d] < 0 ? -1 : 1;
+        u[d] -= k[d] * nc[d];
+      }
+      if (skip) continue;
+      for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = next[j]) {
+        const int *qk = img[j].k;
+        pair(i, j, pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]);
+      }
+    }
+  }
 }
 
 double EventDriven::schedule(int i)
@@ -826,13 +924,11 @@ void EventDriven::start()
     }
   }
   setup_cells();
+  renumber(cell_order());
+  predict_all();
   std::vector<double> times(n);
-  for (int i = 0; i < n; i++) {
-    predict(i);
-    times[i] = schedule(i);
-  }
+  for (int i = 0; i < n; i++) times[i] = schedule(i);
   queue.build(times);
-  reorder();
 }
 
 EDStats EventDriven::advance_to(double t_end)
@@ -906,11 +1002,9 @@ void EventDriven::global_event(int k)
     }
     if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
   }
+  predict_all();
   std::vector<double> times(n);
-  for (int i = 0; i < n; i++) {
-    predict(i);
-    times[i] = schedule(i);
-  }
+  for (int i = 0; i < n; i++) times[i] = schedule(i);
   queue.build(times);
 }
 

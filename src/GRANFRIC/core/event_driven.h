@@ -242,6 +242,9 @@ class EventDriven {
 
   void setup_cells();
   void reorder();
+  std::vector<int> cell_order() const;
+  void renumber(const std::vector<int> &order);
+  void predict_all();                    // predict() for every particle, each pair once
   Vec3 pos(int i, double t) const;
   Vec3 vel(int i, double t) const;
   int cell_of(int i) const
