@@ -436,18 +436,7 @@ void EventDriven::predict_all()
   const int n = (int) P.size();
   bool half = true;
   for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
-  for (int i = 0; i < n; i++) {
-    if (!half) {
-      predict(i);
-      continue;
-    }
-    Sched &p = S[i];
-    const Vec3 xi = pos(i, now), vi = vel(i, now);
-    predict_crossing(i, xi, vi);
-    predict_wall(i, xi, vi);
-    p.ct = NEVER;
-    p.cpartner = -1;
-  }
+  for (int i = 0; i < n; i++) predict(i, !half);
   if (!half) return;
   // j seen from i at the image shift off (j's position + off * L); every particle is at time
   // now (its x and v are current)
@@ -788,7 +777,7 @@ void EventDriven::collide_wall(int i)
   reschedule(i);
 }
 
-void EventDriven::predict(int i)
+void EventDriven::predict(int i, bool pairs)
 {
   Sched &p = S[i];
   const Vec3 xi = pos(i, now), vi = vel(i, now);
@@ -796,6 +785,7 @@ void EventDriven::predict(int i)
   predict_wall(i, xi, vi);
   p.ct = NEVER;
   p.cpartner = -1;
+  if (!pairs) return;
   const int zr = opt.dim == 3 ? 1 : 0;
   int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
   scan(i, xi, vi, dlo, dhi);

@@ -255,7 +255,9 @@ class EventDriven {
   void cell_insert(int i);
   void cell_remove(int i);
   void advance(int i, double t);
-  void predict(int i);                   // everything, against all neighbouring cells
+  // everything, against all neighbouring cells (pairs = false: crossing and walls only, the
+  // collision candidate cleared)
+  void predict(int i, bool pairs = true);
   // next cell crossing only; xi, vi: the particle's state now
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
   // collision candidates in the block of cells at offsets dlo..dhi
