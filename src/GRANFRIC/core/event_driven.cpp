@@ -133,13 +133,11 @@ void EventDriven::resize(int n)
 // external numbering (ext / loc) does not change. Deterministic: a stable sort by cell.
 void EventDriven::reorder()
 {
-  std::vector<double> times(P.size());
-  for (size_t i = 0; i < P.size(); i++) times[i] = queue.time((int) i);
-  std::vector<int> order = cell_order();
-  std::vector<double> sorted(P.size());
-  for (size_t k = 0; k < order.size(); k++) sorted[k] = times[order[k]];
+  const std::vector<int> order = cell_order();
+  std::vector<double> times(order.size());    // event times in the new numbering
+  for (size_t k = 0; k < order.size(); k++) times[k] = queue.time(order[k]);
   renumber(order);
-  queue.build(sorted);
+  queue.build(times);
 }
 
 // particles by cell (stable: by index within a cell)
