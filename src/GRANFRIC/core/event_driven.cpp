@@ -85,20 +85,6 @@ bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<La
   return true;
 }
 
-Vec3 EventDriven::pos(int i, double t) const
-{
-  const EDParticle &p = P[i];
-  const double dt = t - p.t;
-  if (!has_gravity) return p.x + dt * p.v;
-  return p.x + dt * p.v + (0.5 * dt * dt) * opt.gravity;
-}
-
-Vec3 EventDriven::vel(int i, double t) const
-{
-  const EDParticle &p = P[i];
-  return p.v + (t - p.t) * opt.gravity;
-}
-
 void EventDriven::advance(int i, double t)
 {
   EDParticle &p = P[i];

@@ -245,8 +245,20 @@ class EventDriven {
   std::vector<int> cell_order() const;
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
-  Vec3 pos(int i, double t) const;
-  Vec3 vel(int i, double t) const;
+  // lazy state of internal particle i at window time t (inline: read for every candidate
+  // partner and by the LAMMPS fix for every atom and step)
+  Vec3 pos(int i, double t) const
+  {
+    const EDParticle &p = P[i];
+    const double dt = t - p.t;
+    if (!has_gravity) return p.x + dt * p.v;
+    return p.x + dt * p.v + (0.5 * dt * dt) * opt.gravity;
+  }
+  Vec3 vel(int i, double t) const
+  {
+    const EDParticle &p = P[i];
+    return p.v + (t - p.t) * opt.gravity;
+  }
   int cell_of(int i) const
   {
     const int *c = S[i].c;
