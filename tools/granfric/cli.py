@@ -3,9 +3,11 @@ import argparse
 import os
 
 
-def scene_args(argv, doc, default_out, quick_help, full_help):
-    """--out DIR (created), --quick (default) or --full."""
+def scene_args(argv, doc, default_out, quick_help, full_help, extra=None):
+    """--out DIR (created), --quick (default) or --full; extra(parser) may add more options."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    if extra:
+        extra(ap)
     ap.add_argument("--out", default=default_out)
     g = ap.add_mutually_exclusive_group()
     g.add_argument("--quick", action="store_true", help=quick_help)

@@ -15,7 +15,6 @@ temp/profile) exceeds FLOW_ONSET.
 """
 import math
 import os
-import sys
 
 import numpy as np
 
@@ -109,13 +108,18 @@ CASES_FULL = [(2, 0.9, b, 0.05) for b in (-1.0, -0.5, 0.0, 0.5, 1.0)] + \
 
 
 def main(argv=None):
-    argv = list(sys.argv[1:] if argv is None else argv)
-    nseeds = 1
-    if "--seeds" in argv:    # --seeds K: average K seeds per case, with their scatter as error
-        k = argv.index("--seeds")
-        nseeds = int(argv[k + 1])
-        del argv[k:k + 2]
-    a = cli.scene_args(argv, __doc__, "out/luding1998", "4 cases, t <= 400 (default)", "beta scan in 2D and 3D, t <= 2000")
+    def seeds_option(ap):
+        def count(text):
+            k = int(text)
+            if k < 1:
+                raise ValueError(text)
+            return k
+        count.__name__ = "number of seeds (>= 1)"
+        ap.add_argument("--seeds", type=count, default=1,
+                        help="runs per case, averaged, their scatter as the error (default 1)")
+    a = cli.scene_args(argv, __doc__, "out/luding1998", "4 cases, t <= 400 (default)",
+                       "beta scan in 2D and 3D, t <= 2000", extra=seeds_option)
+    nseeds = a.seeds
     cases, tend = (CASES_FULL, 2000.0) if a.full else (CASES_QUICK, 400.0)
     N = 100000 if a.full else 20000
     results = []
