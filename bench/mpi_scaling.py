@@ -137,7 +137,9 @@ def main(argv=None):
     print(f"\nwritten {path}")
 
 
-def callgrind_table(ranks):
+def callgrind_table(ranks, ncoll=10):
+    """Instructions per collision on 1 and `ranks` ranks, N = 316^2, ncoll collisions per
+    particle timed (about ncoll / dt windows after one equilibration window)."""
     import tempfile
     work = tempfile.mkdtemp(prefix="granfric_cg_")
     print(f"| N | fraction | dt (mean free times) | instructions/collision 1 rank | busiest of {ranks} "
@@ -145,8 +147,8 @@ def callgrind_table(ranks):
     print("|---|---|---|---|---|---|")
     for phi, dt in ((0.3, 1), (0.3, 2), (0.05, 1), (0.05, 2)):
         if True:
-            N, c1, ir1 = run_callgrind(316, phi, dt, 3, 1, work)
-            _, c2, ir2 = run_callgrind(316, phi, dt, 3, ranks, work)
+            N, c1, ir1 = run_callgrind(316, phi, dt, ncoll, 1, work)
+            _, c2, ir2 = run_callgrind(316, phi, dt, ncoll, ranks, work)
             e1, e2 = sum(ir1) / c1, max(ir2) / c2
             print(f"| {N} | {phi} | {dt} | {e1:.0f} | {e2:.0f} | {100 * e1 / (ranks * e2):.0f} % |",
                   flush=True)

@@ -196,7 +196,11 @@ void FixHardsphereED::setup(int)
   const bool same = queue_valid && !vibrating && ed.size() > 0 &&
       ed.configured_as(o, atom->ntypes, law_table()) &&
       ed.particle(0).q == pair->shape_factor();
-  if (!same) {
+  if (dom_valid) {
+    // the core of the last domain window: its next window compares the configuration (with
+    // its own cell grid) and every atom itself
+    dom_valid = !vibrating;
+  } else if (!same) {
     configure_core(o);
     queue_valid = false;
   }
@@ -380,7 +384,7 @@ void FixHardsphereED::initial_integrate(int)
 {
   const double dt = update->dt;
   const double t0 = window_start_time();
-  totals[STEP_CONFLICTS] = totals[STEP_COMM] = 0.0;
+  totals[STEP_CONFLICTS] = totals[STEP_COMM] = totals[STEP_PREDICTED] = 0.0;
   if (parallel == DOMAIN && comm->nprocs > 1) {
     // the shell widens after a conflict (in dense gases collision chains outrun v_max) and
     // narrows slowly while windows pass; the same on every rank (conflicts are global)
@@ -505,6 +509,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     report_overlaps(false);
     offset.assign((size_t) ntotal * 3, 0);
     totals[QUEUE_REBUILDS] += 1.0;
+    totals[STEP_PREDICTED] = (double) ntotal;
   }
 
   // kicks of fix hardsphere/kick at their exact times inside the window

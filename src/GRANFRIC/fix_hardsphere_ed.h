@@ -36,7 +36,9 @@ class FixHardsphereED : public Fix {
          // history disagreed with their owner's where it mattered, guard failures) in the last
          // step and in total, windows redone gathered, doubles communicated in the last step
          // and in total
-         DOMAIN_WINDOWS, STEP_CONFLICTS, CONFLICTS, WINDOWS_REDONE, STEP_COMM, COMM, NVECTOR };
+         DOMAIN_WINDOWS, STEP_CONFLICTS, CONFLICTS, WINDOWS_REDONE, STEP_COMM, COMM,
+         // particles predicted afresh at the start of the last step (over all ranks)
+         STEP_PREDICTED, NVECTOR };
   enum { GATHER, DOMAIN };
 
   FixHardsphereED(class LAMMPS *, int, char **);
@@ -124,8 +126,20 @@ class FixHardsphereED : public Fix {
   // domain-decomposed windows (fix_hardsphere_ed_domain.cpp)
   std::vector<granfric::EDEvent> history;
   std::vector<double> dsend, drecv, hsend, hrecv;
-  std::vector<long> gtag;                       // tags of the window's particles
-  std::vector<int> gmask;
+  std::vector<long> gtag;                       // tags of the window's particles (-1: empty slot)
+  std::vector<int> gmask;                       // their masks (0: empty slot)
+  // the core kept from the last domain window: its slots are matched to atoms by ID, and only
+  // atoms whose state arrives different from the slot's are predicted afresh
+  bool dom_valid = false;
+  double dom_dt = 0.0, dom_q = 0.0;
+  double dom_lo[3] = {0, 0, 0}, dom_hi[3] = {0, 0, 0};    // the kept cell grid (open dimensions)
+  bool dom_whole[3] = {false, false, false};
+  std::vector<int> dom_slot;                    // slot of each atom ID, -1: none
+  std::vector<int> dom_free;                    // empty slots
+  std::vector<int> lslot;                       // slot of each owned atom (this window)
+  std::vector<uint8_t> sowned, sowned_prev;     // slot owned in this / the last window
+  std::vector<int> sseen;                       // slot matched in this window (stamp)
+  int dom_stamp = 0;
   std::vector<double> kick_tags;
 };
 

@@ -149,7 +149,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   allgather(dsend, drecv);
 
-  // ------------------------------------------------ the local system: owned, then ghosts
+  // ------------------------------------------------ the copies this rank needs
   const Shell &R = reg[me];
   std::vector<int> gsrc;    // offset of each ghost's record in drecv
   std::vector<std::array<int, 3>> gshift;
@@ -162,57 +162,213 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         gshift.push_back({s3[0], s3[1], s3[2]});
       }
     }
-  const int nghost = (int) gsrc.size(), n = nlocal + nghost;
+  const int nghost = (int) gsrc.size();
+
+  // ------------------------------------------------ the local system: kept, or afresh
+  // The core of the last window is kept when its cell grid still covers this window's region
+  // and nothing else changed; its slots are matched to this window's atoms by ID. Each atom is
+  // taken as it arrives (its owner's state, or LAMMPS's for owned atoms); one whose state
+  // differs in any bit from its slot's is predicted afresh (ed.changed), slots of atoms no
+  // longer here are emptied, new atoms fill empty slots. Owned atoms arrive as this rank left
+  // them, so mostly only the copies are predicted again. The result is the same exact
+  // trajectory as a fresh start of the same system.
+  const double q_now = pair->shape_factor();
+  long maxtag = 0;    // the largest atom ID in this window (slots are looked up by ID)
+  for (int i = 0; i < nlocal; i++) maxtag = std::max(maxtag, (long) tag[i]);
+  for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k]);
   granfric::EDOptions o = base;
-  for (int d = 0; d < 3; d++) {
-    if (R.whole[d] || !domain->periodicity[d]) continue;
-    o.lo[d] = R.lo[d];
-    o.hi[d] = R.hi[d];
+  bool keep = dom_valid && q_now == dom_q && gmx[1] <= ed.cell_radius() && nlocal + nghost > 0;
+  for (int d = 0; d < 3 && keep; d++) {
+    keep = R.whole[d] == dom_whole[d];
+    if (!keep || R.whole[d] || !domain->periodicity[d]) continue;
+    keep = R.lo[d] >= dom_lo[d] && R.hi[d] <= dom_hi[d];
+    o.lo[d] = dom_lo[d];
+    o.hi[d] = dom_hi[d];
     o.periodic[d] = false;
     o.open[d] = true;
   }
-  configure_core(o);
-  ed.resize(n);
-  gtag.resize(n);
-  gmask.resize(n);
-  granfric::EDAccounting acct;
-  acct.key.resize(n);
-  acct.counted.assign(n, 0);
-  for (int e = 0; e < n; e++) {
-    granfric::EDParticle &p = ed.particle(e);
-    if (e < nlocal) {
-      p.x = Vec3(x[e][0], x[e][1], x[e][2]);
-      p.v = Vec3(v[e][0], v[e][1], v[e][2]);
-      p.w = Vec3(omega[e][0], omega[e][1], omega[e][2]);
-      p.a = radius[e];
-      p.m = rmass[e];
-      p.type = type[e];
-      p.t_last = tlast[e] == -INF ? -INF : tlast[e] - t0;
-      gtag[e] = (long) tag[e];
-      gmask[e] = mask[e];
-      acct.counted[e] = 1;
-    } else {
-      const double *b = &drecv[gsrc[e - nlocal]];
-      const auto &sh = gshift[e - nlocal];
-      p.x = Vec3(b[1] + sh[0] * domain->prd[0], b[2] + sh[1] * domain->prd[1],
-                 b[3] + sh[2] * domain->prd[2]);
-      p.v = Vec3(b[4], b[5], b[6]);
-      p.w = Vec3(b[7], b[8], b[9]);
-      p.a = b[10];
-      p.m = b[11];
-      p.type = (int) b[12];
-      p.t_last = b[13];
-      gtag[e] = (long) b[0];
-      gmask[e] = (int) b[14];
+  keep = keep && ed.configured_as(o, atom->ntypes, law_table());
+  // every atom's slot (-1: a new one), and whether the empty slots suffice
+  std::vector<int> inslot(nlocal + nghost, -1);
+  if (keep) {
+    if ((long) dom_slot.size() <= maxtag) dom_slot.resize(maxtag + 1, -1);
+    dom_stamp++;
+    if (dom_stamp == INT32_MAX) keep = false;
+    long fresh_atoms = 0, kept_slots = 0;
+    for (int a = 0; a < nlocal + nghost && keep; a++) {
+      const long t = a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal]];
+      const int sl = dom_slot[t];
+      inslot[a] = sl;
+      if (sl < 0) {
+        fresh_atoms++;
+      } else if (sseen[sl] == dom_stamp) {
+        keep = false;    // an atom twice (cannot happen: an ID is owned once, copied once)
+      } else {
+        sseen[sl] = dom_stamp;
+        kept_slots++;
+      }
     }
-    p.q = q;
-    acct.key[e] = gtag[e];
+    long occupied = 0;
+    for (long t : gtag) occupied += t >= 0 ? 1 : 0;
+    keep = keep && fresh_atoms <= (long) dom_free.size() + (occupied - kept_slots);
   }
+  granfric::EDAccounting acct;
+  long repredicted = 0, owned_changed = 0;
+  if (keep) {
+    ed.rebase(dom_dt);
+    ed.set_clock(t0);
+    const int ns = ed.size();
+    for (int sl = 0; sl < ns; sl++) {
+      if (gtag[sl] < 0 || sseen[sl] == dom_stamp) continue;
+      ed.remove(sl);    // an atom no longer in this rank's region
+      dom_slot[gtag[sl]] = -1;
+      gtag[sl] = -1;
+      gmask[sl] = 0;
+      dom_free.push_back(sl);
+    }
+    sowned.assign(ns, 0);
+    lslot.resize(nlocal);
+    for (int a = 0; a < nlocal + nghost; a++) {
+      int sl = inslot[a];
+      const bool own = a < nlocal;
+      const bool was_mine = own && sl >= 0 && sowned_prev[sl];
+      // an atom this rank owned and wrote back: compared in place (most of them are unchanged)
+      bool same = was_mine;
+      if (same) {
+        const granfric::EDParticle &p = ed.particle(sl);
+        const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
+        for (int d = 0; d < 3 && same; d++)
+          same = x[a][d] == xs[d] && v[a][d] == vs[d] && omega[a][d] == p.w[d];
+        same = same && radius[a] == p.a && rmass[a] == p.m && type[a] == p.type;
+        if (same) {
+          gmask[sl] = mask[a];
+          sowned[sl] = 1;
+          lslot[a] = sl;
+          continue;
+        }
+        owned_changed++;    // something other than this fix changed it
+      }
+      double in[NPACK];
+      if (own) {
+        pack_atom(a, t0, in);
+      } else {
+        memcpy(in, &drecv[gsrc[a - nlocal]], sizeof(in));
+        const auto &sh = gshift[a - nlocal];
+        for (int d = 0; d < 3; d++) in[1 + d] += sh[d] * domain->prd[d];
+      }
+      same = sl >= 0 && !was_mine;
+      if (same) {
+        const granfric::EDParticle &p = ed.particle(sl);
+        const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
+        for (int d = 0; d < 3 && same; d++)
+          same = in[1 + d] == xs[d] && in[4 + d] == vs[d] && in[7 + d] == p.w[d];
+        same = same && in[10] == p.a && in[11] == p.m && (int) in[12] == p.type;
+      } else if (sl < 0) {
+        sl = dom_free.back();
+        dom_free.pop_back();
+        dom_slot[(long) in[0]] = sl;
+        gtag[sl] = (long) in[0];
+      }
+      granfric::EDParticle &ps = ed.particle(sl);
+      // the last-collision time as its owner has it, unless this rank owned the atom already
+      if (!was_mine) ps.t_last = in[13];
+      if (!same) {
+        ps.x = Vec3(in[1], in[2], in[3]);
+        ps.v = Vec3(in[4], in[5], in[6]);
+        ps.w = Vec3(in[7], in[8], in[9]);
+        ps.a = in[10];
+        ps.m = in[11];
+        ps.q = q_now;
+        ps.type = (int) in[12];
+        ed.changed(sl);
+        repredicted++;
+      }
+      gmask[sl] = (int) in[14];
+      if (own) {
+        sowned[sl] = 1;
+        lslot[a] = sl;
+      }
+    }
+  } else {
+    // afresh: owned atoms in slots 0..nlocal-1, the copies after them, then empty slots for
+    // later windows; the cell grid covers this window's region and a margin W
+    for (int d = 0; d < 3; d++) {
+      dom_whole[d] = R.whole[d];
+      if (R.whole[d] || !domain->periodicity[d]) continue;
+      dom_lo[d] = R.lo[d] - W;
+      dom_hi[d] = R.hi[d] + W;
+      o.lo[d] = dom_lo[d];
+      o.hi[d] = dom_hi[d];
+      o.periodic[d] = false;
+      o.open[d] = true;
+    }
+    configure_core(o);
+    const int n = nlocal + nghost, ns = n + n / 16 + 64;
+    ed.resize(ns);
+    gtag.assign(ns, -1);
+    gmask.assign(ns, 0);
+    sowned.assign(ns, 0);
+    sseen.assign(ns, 0);
+    dom_stamp = 0;
+    dom_slot.assign(maxtag + 1, -1);
+    dom_free.clear();
+    lslot.resize(nlocal);
+    for (int e = 0; e < ns; e++) {
+      granfric::EDParticle &p = ed.particle(e);
+      if (e >= n) {
+        ed.remove(e);
+        dom_free.push_back(ns - 1 - (e - n));
+        continue;
+      }
+      if (e < nlocal) {
+        p.x = Vec3(x[e][0], x[e][1], x[e][2]);
+        p.v = Vec3(v[e][0], v[e][1], v[e][2]);
+        p.w = Vec3(omega[e][0], omega[e][1], omega[e][2]);
+        p.a = radius[e];
+        p.m = rmass[e];
+        p.type = type[e];
+        p.t_last = tlast[e] == -INF ? -INF : tlast[e] - t0;
+        gtag[e] = (long) tag[e];
+        gmask[e] = mask[e];
+        sowned[e] = 1;
+        lslot[e] = e;
+      } else {
+        const double *b = &drecv[gsrc[e - nlocal]];
+        const auto &sh = gshift[e - nlocal];
+        p.x = Vec3(b[1] + sh[0] * domain->prd[0], b[2] + sh[1] * domain->prd[1],
+                   b[3] + sh[2] * domain->prd[2]);
+        p.v = Vec3(b[4], b[5], b[6]);
+        p.w = Vec3(b[7], b[8], b[9]);
+        p.a = b[10];
+        p.m = b[11];
+        p.type = (int) b[12];
+        p.t_last = b[13];
+        gtag[e] = (long) b[0];
+        gmask[e] = (int) b[14];
+      }
+      p.q = q_now;
+      dom_slot[gtag[e]] = e;
+    }
+    ed.set_clock(t0);
+    ed.start();
+    dom_q = q_now;
+    repredicted = n;
+    totals[QUEUE_REBUILDS] += 1.0;
+  }
+  const int n = ed.size();    // slots
+  acct.key.assign(gtag.begin(), gtag.end());
+  acct.counted.assign(sowned.begin(), sowned.end());
   ed.set_accounting(acct);
   history.clear();
   ed.record_events(&history);
-  ed.set_clock(t0);
-  ed.start();
+  if (check_overlaps && keep) {
+    // a kept core continues an exact trajectory: the once-per-run overlap check is needed
+    // only if something other than this fix changed atoms a rank had written back (all
+    // ranks decide alike)
+    long any = 0;
+    MPI_Allreduce(&owned_changed, &any, 1, MPI_LONG, MPI_SUM, world);
+    if (any == 0) check_overlaps = false;
+  }
   report_overlaps(true);
   ed.track_paths(true);
 
@@ -252,19 +408,19 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     }
     return std::sqrt(s2);
   };
-  for (int e = 0; e < nlocal && !fail; e++) {
-    const double p = ed.path(e, dt);
+  for (int i = 0; i < nlocal && !fail; i++) {
+    const double p = ed.path(lslot[i], dt);
     if (p <= D) continue;
     for (int r = 0; r < nprocs && !fail; r++) {
       if (r == me || bb[6 * r] > bb[6 * r + 3]) continue;
-      if (inside(reg[r], x[e], s3)) continue;    // r has it: histories are compared
-      if (gap_to(x[e], r) < W + p - D) fail = 1;
+      if (inside(reg[r], x[i], s3)) continue;    // r has it: histories are compared
+      if (gap_to(x[i], r) < W + p - D) fail = 1;
     }
   }
 
   // ------------------------------------------------ influence times t* of the ghosts
   std::vector<double> tstar(n, -INF);
-  for (int e = 0; e < nlocal; e++) tstar[e] = INF;
+  for (int i = 0; i < nlocal; i++) tstar[lslot[i]] = INF;
   for (auto it = history.rbegin(); it != history.rend(); ++it) {
     if (it->j < 0) continue;
     if (tstar[it->i] >= it->t) tstar[it->j] = std::max(tstar[it->j], it->t);
@@ -296,8 +452,9 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     ww.to(out + 5);
   };
   hsend.clear();
-  for (int e = 0; e < nlocal; e++) {
-    if (!sent[e]) continue;
+  for (int i = 0; i < nlocal; i++) {
+    if (!sent[i]) continue;
+    const int e = lslot[i];
     const int k = start[e + 1] - start[e];
     const size_t o0 = hsend.size();
     hsend.resize(o0 + 2 + (size_t) k * NEV);
@@ -327,8 +484,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   const double wtol = vtol / std::max(gmx[1], 1e-300);
   int conflicts = 0;
   double mine_ev[NEV];
-  for (int e = nlocal; e < n && !fail; e++) {
-    if (tstar[e] == -INF) continue;
+  for (int e = 0; e < n && !fail; e++) {
+    if (sowned[e] || gtag[e] < 0 || tstar[e] == -INF) continue;
     const auto it = published.find(gtag[e]);
     if (it == published.end()) {
       conflicts++;    // cannot happen: every ghost was sent, so its history was published
@@ -367,32 +524,39 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   if (global[0] + global[1] > 0 && !unchecked) {
     for (size_t f = 0; f < kicks.size(); f++) kicks[f]->rewind(kick_from[f]);
     queue_valid = false;
+    dom_valid = false;
     return false;
   }
 
   // ------------------------------------------------ commit the owned atoms, sum the statistics
   imageint *image = atom->image;
-  for (int e = 0; e < nlocal; e++) {
+  // an atom more than half a period outside the box is wrapped here (LAMMPS wraps the others)
+  double wlo[3], whi[3];
+  for (int d = 0; d < 3; d++) {
+    wlo[d] = domain->periodicity[d] ? domain->boxlo[d] - 0.5 * domain->prd[d] : -INF;
+    whi[d] = domain->periodicity[d] ? domain->boxhi[d] + 0.5 * domain->prd[d] : INF;
+  }
+  for (int i = 0; i < nlocal; i++) {
+    const int e = lslot[i];
     const granfric::EDParticle &p = ed.particle(e);
     double xe[3];
     ed.position(e, dt).to(xe);
     int dimg[3] = {0, 0, 0};
     for (int d = 0; d < 3; d++) {
-      if (!domain->periodicity[d]) continue;
-      const double L = domain->prd[d];
-      if (xe[d] < domain->boxlo[d] - 0.5 * L || xe[d] >= domain->boxhi[d] + 0.5 * L) {
+      if (xe[d] < wlo[d] || xe[d] >= whi[d]) {
+        const double L = domain->prd[d];
         dimg[d] = (int) std::floor((xe[d] - domain->boxlo[d]) / L);
         xe[d] -= dimg[d] * L;
       }
     }
-    shift_image(image[e], dimg);
-    memcpy(x[e], xe, sizeof(xe));
-    ed.velocity(e, dt).to(v[e]);
-    p.w.to(omega[e]);
-    tlast[e] = p.t_last == -INF ? -INF : p.t_last + t0;
+    shift_image(image[i], dimg);
+    memcpy(x[i], xe, sizeof(xe));
+    ed.velocity(e, dt).to(v[i]);
+    p.w.to(omega[i]);
+    tlast[i] = p.t_last == -INF ? -INF : p.t_last + t0;
   }
   long lsum[8] = {last.collisions, last.sliding, last.tc_elastic, last.energy_created,
-                  last.crossings, last.wall_collisions, last.global_events, 0};
+                  last.crossings, last.wall_collisions, last.global_events, repredicted};
   long gsum[8];
   MPI_Allreduce(lsum, gsum, 8, MPI_LONG, MPI_SUM, world);
   double esum[3] = {last.dE, last.dE_wall, last.injected}, gesum[3];
@@ -415,6 +579,11 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   last.dE_wall = gesum[1];
   last.injected = gesum[2];
   last.max_collisions_one_particle = gmax;
+  totals[STEP_PREDICTED] = (double) gsum[7];
   queue_valid = false;
+  // the core is kept for the next window (it then starts at this window's end)
+  dom_valid = true;
+  dom_dt = dt;
+  sowned_prev.assign(sowned.begin(), sowned.end());
   return true;
 }

@@ -177,6 +177,156 @@ Vec3 test_kick(int e, int k, double s)
   return Vec3(n(g), n(g), n(g));
 }
 
+// Changes from outside between windows with the queue kept (changed(), remove(): how domain
+// windows refresh the copies of other ranks' atoms): velocities of a changing subset are
+// altered at every window boundary, other particles are taken out and put back unchanged;
+// the trajectory equals the brute-force reference with the same changes as instant events.
+TEST(EventDriven, ChangesBetweenWindowsEqualReference)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = 140;
+    s.dim = dim;
+    s.phi = 0.25;
+    s.seed = 311 + dim;
+    Reference ref = make_system(s, LawParams::walton(0.85, 0.3, 0.5));
+    ref.gravity = dim == 2 ? Vec3(0.2, -0.7, 0.0) : Vec3(0.1, -0.3, -0.6);
+    ref.tc = 0.005;
+    const double mft = mean_free_time(ref);
+    const double dt = 0.43 * mft;
+    const int nwin = 12;
+    auto dv = [dim](int e, int k) {
+      Vec3 d = test_kick(e, k, 0.4);
+      if (dim == 2) d.z = 0.0;
+      return d;
+    };
+    auto kicked = [](int e, int w) { return (e + w) % 9 == 0; };
+    for (int w = 1; w < nwin; w++) ref.kick_times.push_back(w * dt);
+    ref.kick = [&](std::vector<RefParticle> &ps, int k) {
+      for (size_t e = 0; e < ps.size(); e++)
+        if (kicked((int) e, k + 1)) ps[e].v += dv((int) e, k + 1);
+    };
+    CoreRun run(ref);
+    EventDriven &ed = run.ed;
+    ed.start();
+    long changed = 0;
+    for (int w = 0; w < nwin; w++) {
+      if (w > 0) {
+        for (int e = 0; e < ed.size(); e++) {
+          const bool k = kicked(e, w), out = (e + 2 * w) % 11 == 0;
+          if (!k && !out) continue;
+          EDParticle &p = ed.particle(e);
+          const Vec3 x = ed.position(e, 0.0), v = ed.velocity(e, 0.0);
+          if (out) ed.remove(e);
+          EXPECT_EQ(ed.present(e), !out);
+          p.x = x;
+          p.v = k ? v + dv(e, w) : v;
+          ed.changed(e);
+          changed++;
+        }
+      }
+      run.total.add(ed.advance_to(dt));
+      ed.rebase(dt);
+    }
+    ref.run_until(nwin * dt);
+    EXPECT_GT(changed, 200);
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    for (size_t i = 0; i < ref.p.size(); i++) {
+      EXPECT_LT(norm(ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+      EXPECT_LT(norm(ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+      EXPECT_LT(ref.p[i].a * norm(ed.particle((int) i).w - ref.p[i].w), 1e-9);
+    }
+  }
+}
+
+// Empty slots: a system with slots left empty at start(), particles taken out for good and
+// new ones put into empty slots between windows continues exactly as a fresh start() of the
+// changed system would (the fresh core sees only the present particles); an empty slot has no
+// events and is never a partner.
+TEST(EventDriven, EmptySlotsFilledAndEmptiedEqualFreshStart)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = 260;
+    s.dim = dim;
+    s.phi = 0.12;
+    s.seed = 733 + dim;
+    Reference ref = make_system(s, LawParams::rough(0.9, 0.2));
+    const double mft = mean_free_time(ref);
+    const double dt = mft;
+    // slots 0..239 are present from the start, 240..259 empty (their states wait in ref)
+    CoreRun run(ref);
+    EventDriven &ed = run.ed;
+    const int n0 = 240;
+    for (int e = n0; e < s.n; e++) ed.remove(e);
+    ed.start();
+    std::vector<char> present(s.n, 0);
+    for (int e = 0; e < n0; e++) present[e] = 1;
+    long overlaps_before = 0;
+    for (int w = 0; w < 4; w++) {
+      run.total.add(ed.advance_to(dt));
+      ed.rebase(dt);
+    }
+    // take out every 7th present particle; fill empty slots at spots clear of everyone
+    for (int e = 0; e < n0; e += 7) {
+      ed.remove(e);
+      present[e] = 0;
+    }
+    int filled = 0;
+    for (int e = n0; e < s.n; e++) {
+      EDParticle &p = ed.particle(e);
+      const RefParticle &r = ref.p[e];
+      bool clear = true;
+      for (int j = 0; j < s.n && clear; j++) {
+        if (!present[j]) continue;
+        clear = norm(ref.min_image(ed.position(j, 0.0) - r.x)) > 1.05 * (r.a + ed.particle(j).a);
+      }
+      if (!clear) continue;
+      p.x = r.x;
+      p.v = r.v;
+      p.w = r.w;
+      ed.changed(e);
+      present[e] = 1;
+      filled++;
+    }
+    EXPECT_GT(filled, 5);
+    // the fresh system: the present particles at this moment
+    EventDriven fresh;
+    fresh.configure(ed.options(), ref.ntypes, ref.laws);
+    std::vector<int> which;
+    for (int e = 0; e < s.n; e++)
+      if (present[e]) which.push_back(e);
+    fresh.resize((int) which.size());
+    for (size_t k = 0; k < which.size(); k++) {
+      EDParticle &p = fresh.particle((int) k);
+      p = ed.particle(which[k]);
+      p.x = ed.position(which[k], 0.0);
+      p.v = ed.velocity(which[k], 0.0);
+    }
+    fresh.start();
+    long ki, kj;
+    double depth;
+    overlaps_before = ed.overlaps(1e-9, ki, kj, depth);
+    EXPECT_EQ(overlaps_before, fresh.overlaps(1e-9, ki, kj, depth));
+    EDStats a, b;
+    for (int w = 0; w < 6; w++) {
+      a.add(ed.advance_to(dt));
+      ed.rebase(dt);
+      b.add(fresh.advance_to(dt));
+      fresh.rebase(dt);
+    }
+    EXPECT_GT(a.collisions, 200);
+    EXPECT_EQ(a.collisions, b.collisions);
+    for (size_t k = 0; k < which.size(); k++) {
+      const int e = which[k];
+      EXPECT_LT(norm(ed.position(e, 0.0) - fresh.position((int) k, 0.0)), 1e-9);
+      EXPECT_LT(norm(ed.velocity(e, 0.0) - fresh.velocity((int) k, 0.0)), 1e-9);
+      EXPECT_LT(norm(ed.particle(e).w - fresh.particle((int) k).w), 1e-9);
+    }
+    for (int e = 0; e < s.n; e++) EXPECT_EQ(ed.present(e), (bool) present[e]);
+  }
+}
+
 TEST(EventDriven, GlobalKicksEqualReference)
 {
   for (int dim = 2; dim <= 3; dim++) {

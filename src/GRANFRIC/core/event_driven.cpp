@@ -112,6 +112,8 @@ void EventDriven::resize(int n)
   ext.resize(n);
   loc.resize(n);
   for (int i = 0; i < n; i++) ext[i] = loc[i] = i;
+  started = false;
+  dirty.clear();
 }
 
 // Renumber the particles in cell order, so that neighbours sit close in memory (the cost of a
@@ -131,10 +133,12 @@ std::vector<int> EventDriven::cell_order() const
 {
   const int n = (int) P.size();
   const int ncell = (int) head.size();
-  std::vector<int> count(ncell + 1, 0), order(n);
-  for (int i = 0; i < n; i++) count[cell_of(i) + 1]++;
-  for (int c = 0; c < ncell; c++) count[c + 1] += count[c];
-  for (int i = 0; i < n; i++) order[count[cell_of(i)]++] = i;
+  // (empty slots after every cell)
+  auto bin = [&](int i) { return S[i].gone ? ncell : cell_of(i); };
+  std::vector<int> count(ncell + 2, 0), order(n);
+  for (int i = 0; i < n; i++) count[bin(i) + 1]++;
+  for (int c = 0; c <= ncell; c++) count[c + 1] += count[c];
+  for (int i = 0; i < n; i++) order[count[bin(i)]++] = i;
   return order;
 }
 
@@ -166,7 +170,8 @@ void EventDriven::renumber(const std::vector<int> &order)
   }
   for (int k = 0; k < n; k++) loc[ext[k]] = k;
   std::fill(head.begin(), head.end(), -1);
-  for (int i = n - 1; i >= 0; i--) cell_insert(i);
+  for (int i = n - 1; i >= 0; i--)
+    if (!S[i].gone) cell_insert(i);
   crossings_since_reorder = 0;
 }
 
@@ -175,7 +180,8 @@ void EventDriven::renumber(const std::vector<int> &order)
 void EventDriven::setup_cells()
 {
   double amax = 0.0;
-  for (const auto &p : P) amax = std::max(amax, p.a);
+  for (size_t i = 0; i < P.size(); i++)
+    if (!S[i].gone) amax = std::max(amax, P[i].a);
   const double sigma = 2.0 * amax * (1.0 + 1e-10);
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -203,22 +209,29 @@ void EventDriven::setup_cells()
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
   next.assign(P.size(), -1);
   prev.assign(P.size(), -1);
+  cell_amax = amax;
   for (size_t i = 0; i < P.size(); i++) {
-    EDParticle &p = P[i];
-    Sched &s = S[i];
-    for (int d = 0; d < 3; d++) {
-      if (d >= opt.dim) {
-        s.c[d] = 0;
-        img[i].k[d] = 0;
-        continue;
-      }
-      long u = (long) std::floor((p.x[d] - opt.lo[d]) / cw[d]);
-      if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
-      long k = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
-      img[i].k[d] = (int) k;
-      s.c[d] = (int) (u - k * nc[d]);
-    }
+    if (S[i].gone) continue;
+    place((int) i);
     cell_insert((int) i);
+  }
+}
+
+void EventDriven::place(int i)
+{
+  const EDParticle &p = P[i];
+  Sched &s = S[i];
+  for (int d = 0; d < 3; d++) {
+    if (d >= opt.dim) {
+      s.c[d] = 0;
+      img[i].k[d] = 0;
+      continue;
+    }
+    long u = (long) std::floor((p.x[d] - opt.lo[d]) / cw[d]);
+    if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
+    long k = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
+    img[i].k[d] = (int) k;
+    s.c[d] = (int) (u - k * nc[d]);
   }
 }
 
@@ -367,6 +380,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
   const int n = (int) P.size();
   const int reach[3] = {1, opt.dim > 1 ? 1 : 0, opt.dim > 2 ? 1 : 0};
   for (int i = 0; i < n; i++) {
+    if (S[i].gone) continue;
     const EDParticle &p = P[i];
     const Vec3 xi = pos(i, now);
     for (int dz = -reach[2]; dz <= reach[2]; dz++)
@@ -420,7 +434,15 @@ void EventDriven::predict_all()
   const int n = (int) P.size();
   bool half = true;
   for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
-  for (int i = 0; i < n; i++) predict(i, !half);
+  for (int i = 0; i < n; i++) {
+    if (S[i].gone) {
+      Sched &s = S[i];
+      s.ct = s.xt = s.wt = NEVER;
+      s.cpartner = -1;
+      continue;
+    }
+    predict(i, !half);
+  }
   if (!half) return;
   // j seen from i at the image shift off (j's position + off * L); every particle is at time
   // now (its x and v are current)
@@ -453,6 +475,7 @@ void EventDriven::predict_all()
           nfwd++;
         }
   for (int i = 0; i < n; i++) {
+    if (S[i].gone) continue;
     const int *pk = img[i].k, *c = S[i].c;
     for (int j = next[i]; j >= 0; j = next[j]) {    // the rest of its own cell
       const int *qk = img[j].k;
@@ -903,6 +926,61 @@ void EventDriven::start()
   std::vector<double> times(n);
   for (int i = 0; i < n; i++) times[i] = schedule(i);
   queue.build(times);
+  started = true;
+  dirty.clear();
+}
+
+void EventDriven::remove(int e)
+{
+  const int i = loc[e];
+  Sched &s = S[i];
+  if (s.gone) return;
+  if (started) {
+    cell_remove(i);
+    queue.update(i, NEVER);
+  }
+  s.gone = 1;
+  s.ct = s.xt = s.wt = NEVER;
+  s.cpartner = -1;
+  s.ekind = NONE;
+  P[i].ncoll++;    // predictions that involved it are stale
+  P[i].last_partner = -1;
+}
+
+void EventDriven::changed(int e)
+{
+  const int i = loc[e];
+  EDParticle &p = P[i];
+  Sched &s = S[i];
+  if (!started) throw std::logic_error("EventDriven::changed() before start()");
+  if (!(p.a <= cell_amax))
+    throw std::invalid_argument("a changed particle's radius exceeds what the cell grid admits");
+  if (!s.gone) cell_remove(i);
+  s.gone = 0;
+  p.t = now;
+  p.ncoll++;    // every prediction that involved it is stale
+  p.last_partner = -1;
+  if (opt.dim == 2) {
+    p.v.z = 0.0;
+    p.w.x = p.w.y = 0.0;
+  }
+  place(i);
+  cell_insert(i);
+  s.ct = s.xt = s.wt = NEVER;
+  s.cpartner = -1;
+  queue.update(i, NEVER);    // until refresh() predicts it
+  dirty.push_back(e);
+}
+
+void EventDriven::refresh()
+{
+  for (int e : dirty) {
+    const int i = loc[e];
+    if (S[i].gone) continue;    // (changed, then removed)
+    predict(i);
+    reschedule(i);
+  }
+  dirty.clear();
 }
 
 EDStats EventDriven::advance_to(double t_end)
@@ -911,6 +989,7 @@ EDStats EventDriven::advance_to(double t_end)
   stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
   for (auto &s : S) s.ncollisions = 0;
   const int n = (int) P.size();
+  refresh();
   if (crossings_since_reorder > 4L * n) reorder();
   size_t g = 0;
   while (n > 0) {

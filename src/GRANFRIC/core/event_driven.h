@@ -150,6 +150,24 @@ class EventDriven {
   EDStats advance_to(double t_end);
   void rebase(double dt);
 
+  // Changes from outside between windows, keeping the queue (after rebase(), before the next
+  // advance_to()), for a caller whose system changes only in part: the copies of other ranks'
+  // atoms in domain-decomposed windows. An external index is a slot that may be empty.
+  //   remove(e)    particle e leaves the system: its slot keeps no cell and no event (before
+  //                start(): the slot starts empty)
+  //   changed(e)   the caller set particle(e)'s x, v and w (their values at window time now)
+  //                and maybe a (up to cell_radius()), m, q, type, t_last; an empty slot is
+  //                filled. The particle moves to its new cell, every prediction that involved
+  //                it goes stale, and the next advance_to() first predicts it afresh against
+  //                every neighbour (after all changes, so changed neighbours see each other).
+  // The result is the exact trajectory of the changed system, as a new start() would give,
+  // at the cost of the changed particles only.
+  void remove(int e);
+  void changed(int e);
+  bool present(int e) const { return !S[loc[e]].gone; }
+  // the largest radius the cell grid of the last start() admits
+  double cell_radius() const { return cell_amax; }
+
   // Instant events that change many particles at once (random kicks): at each of the given
   // window times (ascending, processed before t_end by the next advance_to) every particle is
   // brought to that time, apply(k) may change velocities and spins through particle(e), the
@@ -163,7 +181,7 @@ class EventDriven {
   void track_paths(bool on)
   {
     paths.assign(on ? P.size() : 0, 0.0);
-    for (size_t e = 0; e < paths.size(); e++) paths[e] = norm2(P[loc[e]].v);
+    for (size_t e = 0; e < paths.size(); e++) paths[e] = norm2(vel(loc[e], now));
   }
   double path(int e, double t) const;
   void set_accounting(const EDAccounting &a) { acct = a; }
@@ -202,6 +220,7 @@ class EventDriven {
     uint32_t ccount = 0;      //   partner's ncoll at prediction (stale when it changed),
     int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * L
     int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
+    int8_t gone = 0;          // an empty slot (remove()): no cell, no event (fills padding)
     double ct = NEVER;        //   and time
     double xt = NEVER;        // next cell crossing: time,
     double wt = NEVER;        // next wall collision: time
@@ -236,6 +255,11 @@ class EventDriven {
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
   big_vector<int> head, next, prev;     // cell lists
+  double cell_amax = 0.0;                // largest radius the cells admit
+  bool started = false;                  // start() done since resize()
+  std::vector<int> dirty;                // external indices changed since the last window
+  void refresh();                        // predictions of the dirty particles
+  void place(int i);                     // cell and image of i from its position (at now)
   EventQueue queue;                      // particles by event time
   EDStats stats;
   double now = 0.0;
