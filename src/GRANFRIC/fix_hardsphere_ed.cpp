@@ -364,8 +364,7 @@ void FixHardsphereED::written_state(int s, double t, double *w, const granfric::
 {
   (xs ? *xs : ed.position(s, t)).to(w);
   const int *off = &offset[(size_t) s * 3];
-  for (int d = 0; d < 3; d++)
-    if (domain->periodicity[d]) w[d] -= off[d] * domain->prd[d];
+  for (int d = 0; d < 3; d++) w[d] -= off[d] * wper[d];    // (wper = 0: not periodic, off = 0)
   ed.velocity(s, t).to(w + 3);
   ed.particle(s).w.to(w + 6);
 }
@@ -453,6 +452,8 @@ void FixHardsphereED::window_gather(double t0, double dt)
     if (k >= myfirst && k < myfirst + nlocal) mine[k - myfirst] = s;
   }
 
+  for (int d = 0; d < 3; d++) wper[d] = domain->periodicity[d] ? domain->prd[d] : 0.0;
+
   // Keep the event queue of the previous window when nothing outside this fix touched the
   // atoms since then: same atoms, and positions, velocities and spins bit for bit what this
   // fix wrote (every rank sees the same gathered data, so all decide alike). What was written
@@ -464,12 +465,24 @@ void FixHardsphereED::window_gather(double t0, double dt)
     const granfric::EDParticle &p = ed.particle(s);
     double w[9];
     written_state(s, prev_dt, w);
-    reuse = order[s].first == prev_tags[s] && field(k, 10) == p.a && field(k, 11) == p.m &&
-        (int) field(k, 12) == p.type;
-    for (int f = 3; reuse && f < 9; f++) reuse = field(k, 1 + f) == w[f];
+    // this window's x, v, omega of the atom (in place on one rank)
+    const double *bx, *bv, *bw;
+    if (nprocs == 1) {
+      bx = x[k];
+      bv = v[k];
+      bw = omega[k];
+      reuse = radius[k] == p.a && rmass[k] == p.m && type[k] == p.type;
+    } else {
+      bx = &recvbuf[(size_t) k * NPACK + 1];
+      bv = bx + 3;
+      bw = bx + 6;
+      reuse = bx[9] == p.a && bx[10] == p.m && (int) bx[11] == p.type;
+    }
+    reuse = reuse && order[s].first == prev_tags[s];
+    for (int d = 0; reuse && d < 3; d++) reuse = bv[d] == w[3 + d] && bw[d] == w[6 + d];
     // positions: what this fix wrote, or that shifted by one period by Domain::pbc()
     for (int d = 0; reuse && d < 3; d++) {
-      const double b = field(k, 1 + d);
+      const double b = bx[d];
       if (b == w[d]) continue;
       if (!domain->periodicity[d]) {
         reuse = false;
@@ -544,15 +557,19 @@ void FixHardsphereED::window_gather(double t0, double dt)
   slocal.assign(ntotal, -1);
   for (int i = 0; i < nlocal; i++) slocal[mine[i]] = i;
   imageint *image = atom->image;
+  double wlo[3], whi[3];    // more than half a period outside the box (none if not periodic)
+  for (int d = 0; d < 3; d++) {
+    wlo[d] = domain->periodicity[d] ? domain->boxlo[d] - 0.5 * domain->prd[d] : -INF;
+    whi[d] = domain->periodicity[d] ? domain->boxhi[d] + 0.5 * domain->prd[d] : INF;
+  }
   for (int s = 0; s < ntotal; s++) {
     int *off = &offset[(size_t) s * 3];
     int dimg[3] = {0, 0, 0};
     const granfric::Vec3 xs = ed.position(s, dt);
     for (int d = 0; d < 3; d++) {
-      if (!domain->periodicity[d]) continue;
-      const double L = domain->prd[d];
-      const double y = xs[d] - off[d] * L;
-      if (y < domain->boxlo[d] - 0.5 * L || y >= domain->boxhi[d] + 0.5 * L) {
+      const double y = xs[d] - off[d] * wper[d];
+      if (y < wlo[d] || y >= whi[d]) {
+        const double L = domain->prd[d];
         dimg[d] = (int) std::floor((y - domain->boxlo[d]) / L);
         off[d] += dimg[d];
       }

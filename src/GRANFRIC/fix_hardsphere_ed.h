@@ -97,6 +97,7 @@ class FixHardsphereED : public Fix {
   double prev_dt;
   std::vector<double> prev_tags;                // atom IDs in core order
   std::vector<int> offset;                      // periods between the core's frame and LAMMPS's
+  double wper[3] = {0, 0, 0};                   // period per offset (0: not periodic)
   std::vector<int> jumped;                      // scratch: owned atom of each core particle
   std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window
   std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window

@@ -20,6 +20,16 @@ struct SystemSpec {
   bool lattice = false;        // start on a (triangular / simple cubic) lattice, for dense systems
 };
 
+inline SystemSpec spec_of(int n, int dim, double phi, unsigned seed)
+{
+  SystemSpec s;
+  s.n = n;
+  s.dim = dim;
+  s.phi = phi;
+  s.seed = seed;
+  return s;
+}
+
 // random non-overlapping configuration with Gaussian velocities and spins
 inline Reference make_system(const SystemSpec &s, const LawParams &law)
 {

@@ -184,11 +184,7 @@ Vec3 test_kick(int e, int k, double s)
 TEST(EventDriven, ChangesBetweenWindowsEqualReference)
 {
   for (int dim = 2; dim <= 3; dim++) {
-    SystemSpec s;
-    s.n = 140;
-    s.dim = dim;
-    s.phi = 0.25;
-    s.seed = 311 + dim;
+    const SystemSpec s = spec_of(140, dim, 0.25, 311 + dim);
     Reference ref = make_system(s, LawParams::walton(0.85, 0.3, 0.5));
     ref.gravity = dim == 2 ? Vec3(0.2, -0.7, 0.0) : Vec3(0.1, -0.3, -0.6);
     ref.tc = 0.005;
@@ -246,11 +242,7 @@ TEST(EventDriven, ChangesBetweenWindowsEqualReference)
 TEST(EventDriven, EmptySlotsFilledAndEmptiedEqualFreshStart)
 {
   for (int dim = 2; dim <= 3; dim++) {
-    SystemSpec s;
-    s.n = 260;
-    s.dim = dim;
-    s.phi = 0.12;
-    s.seed = 733 + dim;
+    const SystemSpec s = spec_of(260, dim, 0.12, 733 + dim);
     Reference ref = make_system(s, LawParams::rough(0.9, 0.2));
     const double mft = mean_free_time(ref);
     const double dt = mft;

@@ -18,7 +18,10 @@ namespace {
 constexpr double INF = std::numeric_limits<double>::infinity();
 
 // Simulates an event loop: pop the earliest, give it a later time, sometimes change others.
-void run_against_set(int n, unsigned seed, double spread, double p_inf, double p_far, int steps)
+// p_shift: chance per step of a new window, whose shift is the current time (odd = false) or
+// an arbitrary fraction of it (odd = true: times and the calendar's origin then round apart)
+void run_against_set(int n, unsigned seed, double spread, double p_inf, double p_far, int steps,
+                     double p_shift = 0.001, bool odd = false)
 {
   std::mt19937_64 gen(seed);
   std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -55,9 +58,9 @@ void run_against_set(int n, unsigned seed, double spread, double p_inf, double p
     set_time(best.second, draw(now));
     // a partner's prediction changes too
     if (U(gen) < 0.5) set_time((int) (U(gen) * n), draw(now));
-    if (U(gen) < 0.001) {
+    if (U(gen) < p_shift) {
       // a new window: every time shifted
-      const double dt = now;
+      const double dt = odd ? now * (0.3 + 0.7 * U(gen)) + 1e-3 * spread * U(gen) : now;
       q.shift(dt);
       std::set<std::pair<double, int>> r2;
       for (int i = 0; i < n; i++) {
@@ -65,7 +68,7 @@ void run_against_set(int n, unsigned seed, double spread, double p_inf, double p
         r2.insert({t[i], i});
       }
       ref.swap(r2);
-      now = 0.0;
+      now -= dt;
     }
   }
 }
@@ -75,6 +78,14 @@ void run_against_set(int n, unsigned seed, double spread, double p_inf, double p
 TEST(EventQueue, OrderEqualsSortedSet)
 {
   run_against_set(1000, 1, 1.0, 0.0, 0.0, 200000);
+}
+
+TEST(EventQueue, FrequentArbitraryShifts)
+{
+  // the calendar's origin moves with the times: rounding may put a shifted time into the next
+  // or previous bucket, or make two times equal; the order must stay exactly (time, index)
+  run_against_set(1000, 5, 1.0, 0.05, 0.01, 200000, 0.02, true);
+  run_against_set(200, 6, 1e-7, 0.0, 0.0, 100000, 0.05, true);
 }
 
 TEST(EventQueue, InfiniteAndFarEvents)

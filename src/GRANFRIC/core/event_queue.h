@@ -73,12 +73,26 @@ class EventQueue {
     insert(i);
     settle();
   }
-  // every time minus dt (a window restarts at 0): rebuilt, so rounding cannot misplace anything
+  // every time minus dt (a window restarts at 0). The calendar's origin moves with the times,
+  // so each stays in its bucket, except where rounding of the two subtractions differs: every
+  // particle's bucket is recomputed and the few misplaced ones are moved; the front heap is
+  // re-ordered (rounding can make two times equal, and ties go by index). The order is then
+  // exactly (time, index) again, as after a rebuild, at a fraction of its cost.
   void shift(double dt)
   {
     for (auto &t : key) t -= dt;
-    const std::vector<double> k(key.begin(), key.end());
-    build(k);
+    origin -= dt;
+    const int n = (int) key.size();
+    for (int i = 0; i < n; i++) {
+      const int64_t b = bucket(key[i]);
+      const int s = where[i];
+      const bool right = b == BEYOND ? s == OVER : b == cur ? s <= FRONT : s == (int) (b & (nb - 1));
+      if (right) continue;
+      remove(i);
+      insert(i);
+    }
+    for (int k = (int) front.size() / 2 - 1; k >= 0; k--) down(k);
+    settle();
   }
   size_t memory_bytes() const
   {
