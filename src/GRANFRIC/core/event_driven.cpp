@@ -98,7 +98,7 @@ void EventDriven::advance(int i, double t)
 double EventDriven::path(int e, double t) const
 {
   // between velocity changes gravity changes the speed by at most |g| t
-  const double s = std::sqrt(paths.empty() ? norm2(P[loc[e]].v) : paths[e]);
+  const double s = std::sqrt(path_speed2(e));
   return t * (s + 0.5 * t * norm(opt.gravity));
 }
 

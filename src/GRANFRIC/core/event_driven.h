@@ -184,6 +184,8 @@ class EventDriven {
     for (size_t e = 0; e < paths.size(); e++) paths[e] = norm2(vel(loc[e], now));
   }
   double path(int e, double t) const;
+  // the squared speed path() starts from (its largest since track_paths())
+  double path_speed2(int e) const { return paths.empty() ? norm2(P[loc[e]].v) : paths[e]; }
   void set_accounting(const EDAccounting &a) { acct = a; }
 
   // Pairs that overlap by more than tol times their contact distance at the current time
