@@ -229,19 +229,22 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     }
     sowned.assign(ns, 0);
     lslot.resize(nlocal);
+    // does slot sl hold, bit for bit, the state xa, va, wa, radius, mass, type (at window time 0)?
+    auto holds = [&](int sl, const double *xa, const double *va, const double *wa, double ra,
+                     double ma, int ta) {
+      const granfric::EDParticle &p = ed.particle(sl);
+      const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
+      bool same = ra == p.a && ma == p.m && ta == p.type;
+      for (int d = 0; d < 3 && same; d++) same = xa[d] == xs[d] && va[d] == vs[d] && wa[d] == p.w[d];
+      return same;
+    };
     for (int a = 0; a < nlocal + nghost; a++) {
       int sl = inslot[a];
       const bool own = a < nlocal;
       const bool was_mine = own && sl >= 0 && sowned_prev[sl];
       // an atom this rank owned and wrote back: compared in place (most of them are unchanged)
-      bool same = was_mine;
-      if (same) {
-        const granfric::EDParticle &p = ed.particle(sl);
-        const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
-        for (int d = 0; d < 3 && same; d++)
-          same = x[a][d] == xs[d] && v[a][d] == vs[d] && omega[a][d] == p.w[d];
-        same = same && radius[a] == p.a && rmass[a] == p.m && type[a] == p.type;
-        if (same) {
+      if (was_mine) {
+        if (holds(sl, x[a], v[a], omega[a], radius[a], rmass[a], type[a])) {
           gmask[sl] = mask[a];
           sowned[sl] = 1;
           lslot[a] = sl;
@@ -257,14 +260,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         const auto &sh = gshift[a - nlocal];
         for (int d = 0; d < 3; d++) in[1 + d] += sh[d] * domain->prd[d];
       }
-      same = sl >= 0 && !was_mine;
-      if (same) {
-        const granfric::EDParticle &p = ed.particle(sl);
-        const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
-        for (int d = 0; d < 3 && same; d++)
-          same = in[1 + d] == xs[d] && in[4 + d] == vs[d] && in[7 + d] == p.w[d];
-        same = same && in[10] == p.a && in[11] == p.m && (int) in[12] == p.type;
-      } else if (sl < 0) {
+      const bool same = sl >= 0 && !was_mine && holds(sl, in + 1, in + 4, in + 7, in[10], in[11], (int) in[12]);
+      if (sl < 0) {
         sl = dom_free.back();
         dom_free.pop_back();
         dom_slot[(long) in[0]] = sl;

@@ -436,9 +436,7 @@ void EventDriven::predict_all()
   for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
   for (int i = 0; i < n; i++) {
     if (S[i].gone) {
-      Sched &s = S[i];
-      s.ct = s.xt = s.wt = NEVER;
-      s.cpartner = -1;
+      no_events(i);
       continue;
     }
     predict(i, !half);
@@ -940,8 +938,7 @@ void EventDriven::remove(int e)
     queue.update(i, NEVER);
   }
   s.gone = 1;
-  s.ct = s.xt = s.wt = NEVER;
-  s.cpartner = -1;
+  no_events(i);
   s.ekind = NONE;
   P[i].ncoll++;    // predictions that involved it are stale
   P[i].last_partner = -1;
@@ -966,8 +963,7 @@ void EventDriven::changed(int e)
   }
   place(i);
   cell_insert(i);
-  s.ct = s.xt = s.wt = NEVER;
-  s.cpartner = -1;
+  no_events(i);
   queue.update(i, NEVER);    // until refresh() predicts it
   dirty.push_back(e);
 }

@@ -262,6 +262,12 @@ class EventDriven {
   std::vector<int> dirty;                // external indices changed since the last window
   void refresh();                        // predictions of the dirty particles
   void place(int i);                     // cell and image of i from its position (at now)
+  void no_events(int i)                  // no collision candidate, crossing or wall event
+  {
+    Sched &s = S[i];
+    s.ct = s.xt = s.wt = NEVER;
+    s.cpartner = -1;
+  }
   EventQueue queue;                      // particles by event time
   EDStats stats;
   double now = 0.0;
