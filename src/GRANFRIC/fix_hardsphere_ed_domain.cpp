@@ -195,24 +195,38 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     if ((long) dom_slot.size() <= maxtag) dom_slot.resize(maxtag + 1, -1);
     dom_stamp++;
     if (dom_stamp == INT32_MAX) keep = false;
-    long fresh_atoms = 0, kept_slots = 0;
     for (int a = 0; a < nlocal + nghost && keep; a++) {
       const long t = a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal]];
       const int sl = dom_slot[t];
       inslot[a] = sl;
-      if (sl < 0) {
-        fresh_atoms++;
-      } else if (sseen[sl] == dom_stamp) {
-        keep = false;    // an atom twice (cannot happen: an ID is owned once, copied once)
-      } else {
-        sseen[sl] = dom_stamp;
-        kept_slots++;
-      }
+      if (sl < 0) continue;
+      keep = sseen[sl] != dom_stamp;    // (an atom twice cannot happen: owned once, copied once)
+      sseen[sl] = dom_stamp;
     }
-    long occupied = 0;
-    for (long t : gtag) occupied += t >= 0 ? 1 : 0;
-    keep = keep && fresh_atoms <= (long) dom_free.size() + (occupied - kept_slots);
+    // the slots of atoms no longer here are emptied first, so every atom finds one if the slots
+    // outnumber the atoms
+    keep = keep && nlocal + nghost <= ed.size();
   }
+  // atom a of this window as a record (see NPACK): an owned atom (a < nlocal) from LAMMPS, a
+  // copy as received, at the periodic image inside this rank's region
+  auto record_of = [&](int a, double *in) {
+    if (a < nlocal) {
+      pack_atom(a, t0, in);
+      return;
+    }
+    memcpy(in, &drecv[gsrc[a - nlocal]], NPACK * sizeof(double));
+    const auto &sh = gshift[a - nlocal];
+    for (int d = 0; d < 3; d++) in[1 + d] += sh[d] * domain->prd[d];
+  };
+  auto set_state = [&](granfric::EDParticle &p, const double *in) {
+    p.x = Vec3(in[1], in[2], in[3]);
+    p.v = Vec3(in[4], in[5], in[6]);
+    p.w = Vec3(in[7], in[8], in[9]);
+    p.a = in[10];
+    p.m = in[11];
+    p.q = q_now;
+    p.type = (int) in[12];
+  };
   granfric::EDAccounting acct;
   long repredicted = 0, owned_changed = 0;
   if (keep) {
@@ -253,13 +267,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         owned_changed++;    // something other than this fix changed it
       }
       double in[NPACK];
-      if (own) {
-        pack_atom(a, t0, in);
-      } else {
-        memcpy(in, &drecv[gsrc[a - nlocal]], sizeof(in));
-        const auto &sh = gshift[a - nlocal];
-        for (int d = 0; d < 3; d++) in[1 + d] += sh[d] * domain->prd[d];
-      }
+      record_of(a, in);
       const bool same = sl >= 0 && !was_mine && holds(sl, in + 1, in + 4, in + 7, in[10], in[11], (int) in[12]);
       if (sl < 0) {
         sl = dom_free.back();
@@ -271,13 +279,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       // the last-collision time as its owner has it, unless this rank owned the atom already
       if (!was_mine) ps.t_last = in[13];
       if (!same) {
-        ps.x = Vec3(in[1], in[2], in[3]);
-        ps.v = Vec3(in[4], in[5], in[6]);
-        ps.w = Vec3(in[7], in[8], in[9]);
-        ps.a = in[10];
-        ps.m = in[11];
-        ps.q = q_now;
-        ps.type = (int) in[12];
+        set_state(ps, in);
         ed.changed(sl);
         repredicted++;
       }
@@ -318,33 +320,16 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         dom_free.push_back(ns - 1 - (e - n));
         continue;
       }
+      double in[NPACK];
+      record_of(e, in);
+      set_state(p, in);
+      p.t_last = in[13];
+      gtag[e] = (long) in[0];
+      gmask[e] = (int) in[14];
       if (e < nlocal) {
-        p.x = Vec3(x[e][0], x[e][1], x[e][2]);
-        p.v = Vec3(v[e][0], v[e][1], v[e][2]);
-        p.w = Vec3(omega[e][0], omega[e][1], omega[e][2]);
-        p.a = radius[e];
-        p.m = rmass[e];
-        p.type = type[e];
-        p.t_last = tlast[e] == -INF ? -INF : tlast[e] - t0;
-        gtag[e] = (long) tag[e];
-        gmask[e] = mask[e];
         sowned[e] = 1;
         lslot[e] = e;
-      } else {
-        const double *b = &drecv[gsrc[e - nlocal]];
-        const auto &sh = gshift[e - nlocal];
-        p.x = Vec3(b[1] + sh[0] * domain->prd[0], b[2] + sh[1] * domain->prd[1],
-                   b[3] + sh[2] * domain->prd[2]);
-        p.v = Vec3(b[4], b[5], b[6]);
-        p.w = Vec3(b[7], b[8], b[9]);
-        p.a = b[10];
-        p.m = b[11];
-        p.type = (int) b[12];
-        p.t_last = b[13];
-        gtag[e] = (long) b[0];
-        gmask[e] = (int) b[14];
       }
-      p.q = q_now;
       dom_slot[gtag[e]] = e;
     }
     ed.set_clock(t0);
