@@ -90,8 +90,12 @@ void EventDriven::advance(int i, double t)
   EDParticle &p = P[i];
   if (p.t == t) return;
   const double dt = t - p.t;
-  p.x += dt * p.v + (0.5 * dt * dt) * opt.gravity;
-  p.v += dt * opt.gravity;
+  if (has_gravity) {
+    p.x += dt * p.v + (0.5 * dt * dt) * opt.gravity;
+    p.v += dt * opt.gravity;
+  } else {
+    p.x += dt * p.v;
+  }
   p.t = t;
 }
 
@@ -257,8 +261,42 @@ void EventDriven::cell_remove(int i)
 
 // ---------------------------------------------------------------- prediction
 
+// straight flight in every dimension (no gravity), the dimension known at compile time: only
+// the boundary ahead can be reached (none beyond an edge cell); the same arithmetic as below
+template <int DIM>
+void EventDriven::predict_crossing_straight(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  Sched &p = S[i];
+  const int *k = img[i].k;
+  double xt = NEVER;
+  int xdim = 0, xdir = 0;
+  for (int d = 0; d < DIM; d++) {
+    const double v = vi[d];
+    if (v > 0.0) {
+      if (!opt.periodic[d] && p.c[d] == nc[d] - 1) continue;
+      const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
+      const double t = now + std::max(0.0, (bhi - xi[d]) / v);
+      if (t < xt) xt = t, xdim = d, xdir = 1;
+    } else if (v < 0.0) {
+      if (!opt.periodic[d] && p.c[d] == 0) continue;
+      const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
+      const double t = now + std::max(0.0, (blo - xi[d]) / v);
+      if (t < xt) xt = t, xdim = d, xdir = -1;
+    }
+  }
+  p.xt = xt;
+  if (xt < NEVER) p.xdim = (int8_t) xdim, p.xdir = (int8_t) xdir;
+}
+
 void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 {
+  if (!has_gravity) {
+    if (opt.dim == 2)
+      predict_crossing_straight<2>(i, xi, vi);
+    else
+      predict_crossing_straight<3>(i, xi, vi);
+    return;
+  }
   Sched &p = S[i];
   const int *k = img[i].k;
   p.xt = NEVER;
@@ -308,60 +346,130 @@ void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 
 // collision candidates of i among the particles of the cells at offsets dlo..dhi (inclusive)
 // around its cell; periodic images by integer offsets
-void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dhi[3])
+void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+{
+  if (opt.dim == 2) {
+    if (has_gravity)
+      scan_t<2, true, false>(i, xi, vi, dlo, dhi);
+    else
+      scan_t<2, false, false>(i, xi, vi, dlo, dhi);
+  } else {
+    if (has_gravity)
+      scan_t<3, true, false>(i, xi, vi, dlo, dhi);
+    else
+      scan_t<3, false, false>(i, xi, vi, dlo, dhi);
+  }
+}
+
+void EventDriven::scan_full(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  static const int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+  static const int lo2[3] = {-1, -1, 0}, hi2[3] = {1, 1, 0};
+  if (opt.dim == 2) {
+    if (has_gravity)
+      scan_t<2, true, true>(i, xi, vi, lo2, hi2);
+    else
+      scan_t<2, false, true>(i, xi, vi, lo2, hi2);
+  } else {
+    if (has_gravity)
+      scan_t<3, true, true>(i, xi, vi, lo, hi);
+    else
+      scan_t<3, false, true>(i, xi, vi, lo, hi);
+  }
+}
+
+// scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,
+// dhi = -1, +1 in every dimension) or not, known at compile time. In 2d nothing
+// moves in z (v.z = 0, g.z = 0): the z terms of the relative motion vanish except the constant
+// z distance, and every operation left is the one of the 3d arithmetic in the same order, so
+// the contact times are the same numbers bit for bit.
+template <int DIM, bool GRAV, bool FULL>
+void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
 {
   const EDParticle &p = P[i];
   Sched &s = S[i];
   const int *pk = img[i].k;
-  const bool gravity = has_gravity;
+  const Vec3 g = opt.gravity;
   // one candidate j in the cell at image shift (kx, ky, kz) from i's
   auto test = [&](int j, int kx, int ky, int kz) __attribute__((always_inline)) {
     const EDParticle &q = P[j];
     const int *qk = img[j].k;
-    const int off[3] = {pk[0] + kx - qk[0], pk[1] + ky - qk[1], pk[2] + kz - qk[2]};
+    const int o0 = pk[0] + kx - qk[0], o1 = pk[1] + ky - qk[1];
+    const int o2 = DIM == 3 ? pk[2] + kz - qk[2] : 0;
     // two particles whose last collisions were with each other (same periodic image)
     // separate in free flight: relative motion is a straight line
-    if (p.last_partner == j && q.last_partner == i && off[0] == s.last_off[0] &&
-        off[1] == s.last_off[1] && off[2] == s.last_off[2])
+    if (p.last_partner == j && q.last_partner == i && o0 == s.last_off[0] && o1 == s.last_off[1] &&
+        o2 == s.last_off[2])
       return;
     const double dtj = now - q.t;
-    Vec3 xj = q.x + dtj * q.v, vj = q.v;
-    if (off[0] | off[1] | off[2]) xj += Vec3(off[0] * L.x, off[1] * L.y, off[2] * L.z);
-    if (gravity) {
-      xj += (0.5 * dtj * dtj) * opt.gravity;
-      vj += dtj * opt.gravity;
+    double x0 = q.x.x + dtj * q.v.x, x1 = q.x.y + dtj * q.v.y;
+    double x2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
+    double v0 = q.v.x, v1 = q.v.y, v2 = DIM == 3 ? q.v.z : 0.0;
+    if (o0 | o1 | o2) {
+      x0 += o0 * L.x;
+      x1 += o1 * L.y;
+      if (DIM == 3) x2 += o2 * L.z;
     }
-    const double t = now + pair_contact_time(xi - xj, vi - vj, p.a + q.a);
+    if (GRAV) {
+      const double h = 0.5 * dtj * dtj;
+      x0 += h * g.x;
+      x1 += h * g.y;
+      v0 += dtj * g.x;
+      v1 += dtj * g.y;
+      if (DIM == 3) {
+        x2 += h * g.z;
+        v2 += dtj * g.z;
+      }
+    }
+    // pair_contact_time(xi - xj, vi - vj, a_i + a_j)
+    const double r0 = xi.x - x0, r1 = xi.y - x1, r2 = xi.z - x2;
+    const double u0 = vi.x - v0, u1 = vi.y - v1, u2 = DIM == 3 ? vi.z - v2 : 0.0;
+    const double b = DIM == 3 ? r0 * u0 + r1 * u1 + r2 * u2 : r0 * u0 + r1 * u1;
+    if (b >= 0.0) return;
+    const double w2 = DIM == 3 ? u0 * u0 + u1 * u1 + u2 * u2 : u0 * u0 + u1 * u1;
+    const double sig = p.a + q.a;
+    const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sig * sig;
+    const double disc = b * b - w2 * c;
+    if (disc < 0.0) return;
+    const double tau = c / (-b + std::sqrt(disc));
+    const double t = now + (tau > 0.0 ? tau : 0.0);
     if (t < s.ct) {
       s.ct = t;
       s.cpartner = j;
       s.ccount = q.ncoll;
-      for (int d = 0; d < 3; d++) s.coff[d] = off[d];
+      s.coff[0] = o0;
+      s.coff[1] = o1;
+      s.coff[2] = o2;
     }
   };
+  const int *c = s.c;
+  const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
+  const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
+  const int x0 = FULL ? -1 : dlo[0], x1 = FULL ? 1 : dhi[0];
   // the usual case: the block of cells lies inside the grid (no wrapping, no edges)
-  bool inside = true;
-  for (int d = 0; d < 3; d++) inside = inside && s.c[d] + dlo[d] >= 0 && s.c[d] + dhi[d] < nc[d];
+  bool inside = c[0] + x0 >= 0 && c[0] + x1 < nc[0] && c[1] + ylo >= 0 && c[1] + yhi < nc[1];
+  if (DIM == 3) inside = inside && c[2] + zlo >= 0 && c[2] + zhi < nc[2];
   if (inside) {
-    for (int dz = dlo[2]; dz <= dhi[2]; dz++)
-      for (int dy = dlo[1]; dy <= dhi[1]; dy++) {
-        const int row = ((s.c[2] + dz) * nc[1] + s.c[1] + dy) * nc[0] + s.c[0];
-        for (int dx = dlo[0]; dx <= dhi[0]; dx++)
-          for (int j = head[row + dx]; j >= 0; j = next[j])
+    const int *base = head.data() + (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+    for (int dz = zlo; dz <= zhi; dz++)
+      for (int dy = ylo; dy <= yhi; dy++) {
+        const int *h = base + (dz * nc[1] + dy) * nc[0];
+        for (int dx = x0; dx <= x1; dx++)
+          for (int j = h[dx]; j >= 0; j = next[j])
             if (j != i) test(j, 0, 0, 0);
       }
     return;
   }
-  for (int dz = dlo[2]; dz <= dhi[2]; dz++) {
-    int uz = s.c[2] + dz, kz = 0;
+  for (int dz = zlo; dz <= zhi; dz++) {
+    int uz = c[2] + dz, kz = 0;
     if (uz < 0) { if (!opt.periodic[2]) continue; uz += nc[2]; kz = -1; }
     else if (uz >= nc[2]) { if (!opt.periodic[2]) continue; uz -= nc[2]; kz = 1; }
-    for (int dy = dlo[1]; dy <= dhi[1]; dy++) {
-      int uy = s.c[1] + dy, ky = 0;
+    for (int dy = ylo; dy <= yhi; dy++) {
+      int uy = c[1] + dy, ky = 0;
       if (uy < 0) { if (!opt.periodic[1]) continue; uy += nc[1]; ky = -1; }
       else if (uy >= nc[1]) { if (!opt.periodic[1]) continue; uy -= nc[1]; ky = 1; }
-      for (int dx = dlo[0]; dx <= dhi[0]; dx++) {
-        int ux = s.c[0] + dx, kx = 0;
+      for (int dx = x0; dx <= x1; dx++) {
+        int ux = c[0] + dx, kx = 0;
         if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
@@ -663,12 +771,9 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
   return NEVER;
 }
 
-void EventDriven::predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
+void EventDriven::predict_walls(int i, const Vec3 &xi, const Vec3 &vi)
 {
   Sched &p = S[i];
-  p.wt = NEVER;
-  p.wall = -1;
-  if (opt.walls.empty()) return;
   const double a = P[i].a;
   for (int k = 0; k < (int) opt.walls.size(); k++) {
     const EDWall &w = opt.walls[k];
@@ -791,9 +896,7 @@ void EventDriven::predict(int i, bool pairs)
   p.ct = NEVER;
   p.cpartner = -1;
   if (!pairs) return;
-  const int zr = opt.dim == 3 ? 1 : 0;
-  int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
-  scan(i, xi, vi, dlo, dhi);
+  scan_full(i, xi, vi);
 }
 
 // ---------------------------------------------------------------- events
@@ -890,9 +993,7 @@ void EventDriven::cross(int i)
     // the stored collision candidate went stale: look at every neighbouring cell
     p.ct = NEVER;
     p.cpartner = -1;
-    const int zr = opt.dim == 3 ? 1 : 0;
-    int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
-    scan(i, xi, vi, dlo, dhi);
+    scan_full(i, xi, vi);
   } else {
     // trajectory unchanged: only the layer of cells that just became adjacent is new
     const int zr = opt.dim == 3 ? 1 : 0;

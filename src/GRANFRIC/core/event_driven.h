@@ -304,10 +304,21 @@ class EventDriven {
   void predict(int i, bool pairs = true);
   // next cell crossing only; xi, vi: the particle's state now
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
+  template <int DIM>
+  void predict_crossing_straight(int i, const Vec3 &xi, const Vec3 &vi);
   // collision candidates in the block of cells at offsets dlo..dhi
-  void scan(int i, const Vec3 &xi, const Vec3 &vi, int dlo[3], int dhi[3]);
+  void scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
+  void scan_full(int i, const Vec3 &xi, const Vec3 &vi);    // offsets -1..1 in every dimension
+  template <int DIM, bool GRAV, bool FULL>
+  void scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
   double schedule(int i);                // ekind from the candidates; returns the event time
-  void predict_wall(int i, const Vec3 &xi, const Vec3 &vi);
+  void predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
+  {
+    S[i].wt = NEVER;
+    S[i].wall = -1;
+    if (!opt.walls.empty()) predict_walls(i, xi, vi);
+  }
+  void predict_walls(int i, const Vec3 &xi, const Vec3 &vi);    // (there are walls)
   void collide_wall(int i);
   Collision thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t);
   void collide_pair(int i);

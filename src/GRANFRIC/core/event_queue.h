@@ -124,7 +124,8 @@ class EventQueue {
   {
     const double u = (t - origin) * inv_w;
     if (!(u < (double) (cur + nb))) return BEYOND;
-    const int64_t b = (int64_t) std::floor(u);
+    // truncation differs from floor only for u in (-1, 0), and both give cur (>= 0) then
+    const int64_t b = (int64_t) u;
     return b > cur ? b : cur;
   }
   void link(int &h, int i)
