@@ -450,12 +450,17 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
   bool inside = c[0] + x0 >= 0 && c[0] + x1 < nc[0] && c[1] + ylo >= 0 && c[1] + yhi < nc[1];
   if (DIM == 3) inside = inside && c[2] + zlo >= 0 && c[2] + zhi < nc[2];
   if (inside) {
-    const int *base = head.data() + (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+    const int n0 = nc[0], n1 = nc[1];
+    const int *NX = next.data();
+    const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
+#pragma GCC unroll 3
     for (int dz = zlo; dz <= zhi; dz++)
+#pragma GCC unroll 3
       for (int dy = ylo; dy <= yhi; dy++) {
-        const int *h = base + (dz * nc[1] + dy) * nc[0];
+        const int *h = base + (dz * n1 + dy) * n0;
+#pragma GCC unroll 3
         for (int dx = x0; dx <= x1; dx++)
-          for (int j = h[dx]; j >= 0; j = next[j])
+          for (int j = h[dx]; j >= 0; j = NX[j])
             if (j != i) test(j, 0, 0, 0);
       }
     return;
