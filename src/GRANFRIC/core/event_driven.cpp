@@ -453,16 +453,24 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
     const int n0 = nc[0], n1 = nc[1];
     const int *NX = next.data();
     const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
+    // the first particle of every occupied cell, in cell order, gathered without branches
+    // (which cells are empty is random: a branch per cell would be mispredicted often)
+    int first[27], nfirst = 0;
 #pragma GCC unroll 3
     for (int dz = zlo; dz <= zhi; dz++)
 #pragma GCC unroll 3
       for (int dy = ylo; dy <= yhi; dy++) {
         const int *h = base + (dz * n1 + dy) * n0;
 #pragma GCC unroll 3
-        for (int dx = x0; dx <= x1; dx++)
-          for (int j = h[dx]; j >= 0; j = NX[j])
-            if (j != i) test(j, 0, 0, 0);
+        for (int dx = x0; dx <= x1; dx++) {
+          const int j = h[dx];
+          first[nfirst] = j;
+          nfirst += j >= 0;
+        }
       }
+    for (int f = 0; f < nfirst; f++)
+      for (int j = first[f]; j >= 0; j = NX[j])
+        if (j != i) test(j, 0, 0, 0);
     return;
   }
   for (int dz = zlo; dz <= zhi; dz++) {
