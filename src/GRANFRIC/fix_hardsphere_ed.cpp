@@ -229,8 +229,8 @@ void FixHardsphereED::report_overlaps(bool partial)
     kj = keys[1];
   } else if (ki >= 0) {
     // gathered window: the keys are positions in atom-ID order
-    ki = (long) order[ki].first;
-    kj = (long) order[kj].first;
+    ki = (long) otags[ki];
+    kj = (long) otags[kj];
   }
   if (n > 0 && comm->me == 0)
     error->warning(FLERR,
@@ -363,8 +363,8 @@ void FixHardsphereED::shift_image(imageint &image, const int *dimg)
 void FixHardsphereED::written_state(int s, double t, double *w, const granfric::Vec3 *xs) const
 {
   (xs ? *xs : ed.position(s, t)).to(w);
-  const int *off = &offset[(size_t) s * 3];
-  for (int d = 0; d < 3; d++) w[d] -= off[d] * wper[d];    // (wper = 0: not periodic, off = 0)
+  const int *off = &offset[(size_t) s * noff];
+  for (int d = 0; d < noff; d++) w[d] -= off[d] * wper[d];    // (wper = 0: not periodic, off = 0)
   ed.velocity(s, t).to(w + 3);
   ed.particle(s).w.to(w + 6);
 }
@@ -439,16 +439,25 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
   // step's order usually still holds
   bool same_order = (int) order.size() == ntotal;
-  for (int s = 0; same_order && s < ntotal; s++) same_order = field(order[s].second, 0) == order[s].first;
+  for (int s = 0; same_order && s < ntotal; s++) same_order = field(order[s], 0) == otags[s];
   if (!same_order) {
     order.resize(ntotal);
-    for (int k = 0; k < ntotal; k++) order[k] = {field(k, 0), k};
-    std::sort(order.begin(), order.end());
+    for (int k = 0; k < ntotal; k++) order[k] = k;
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return field(a, 0) < field(b, 0); });
+    // the same atoms as the core's if the sorted tags are the same
+    bool same = same_atoms && (int) otags.size() == ntotal;
+    otags.resize(ntotal);
+    for (int s = 0; s < ntotal; s++) {
+      const double t = field(order[s], 0);
+      same = same && otags[s] == t;
+      otags[s] = t;
+    }
+    same_atoms = same;
   }
   mine.assign(nlocal, -1);
   const int myfirst = displs[me] / NPACK;
   for (int s = 0; s < ntotal; s++) {
-    const int k = order[s].second;
+    const int k = order[s];
     if (k >= myfirst && k < myfirst + nlocal) mine[k - myfirst] = s;
   }
 
@@ -458,10 +467,10 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // atoms since then: same atoms, and positions, velocities and spins bit for bit what this
   // fix wrote (every rank sees the same gathered data, so all decide alike). What was written
   // is recomputed from the core, with the same arithmetic, rather than stored.
-  bool reuse = queue_valid && ed.size() == ntotal && (int) prev_tags.size() == ntotal &&
-      (int) offset.size() == 3 * ntotal;
+  bool reuse = queue_valid && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
+      (int) offset.size() == noff * ntotal;
   for (int s = 0; reuse && s < ntotal; s++) {
-    const int k = order[s].second;
+    const int k = order[s];
     const granfric::EDParticle &p = ed.particle(s);
     double w[9];
     written_state(s, prev_dt, w);
@@ -478,18 +487,17 @@ void FixHardsphereED::window_gather(double t0, double dt)
       bw = bx + 6;
       reuse = bx[9] == p.a && bx[10] == p.m && (int) bx[11] == p.type;
     }
-    reuse = reuse && order[s].first == prev_tags[s];
     for (int d = 0; reuse && d < 3; d++) reuse = bv[d] == w[3 + d] && bw[d] == w[6 + d];
     // positions: what this fix wrote, or that shifted by one period by Domain::pbc()
     for (int d = 0; reuse && d < 3; d++) {
       const double b = bx[d];
       if (b == w[d]) continue;
-      if (!domain->periodicity[d]) {
+      if (!domain->periodicity[d] || d >= noff) {
         reuse = false;
       } else if (b == w[d] + domain->prd[d]) {
-        offset[(size_t) s * 3 + d]--;
+        offset[(size_t) s * noff + d]--;
       } else if (b == MAX(w[d] - domain->prd[d], domain->boxlo[d])) {
-        offset[(size_t) s * 3 + d]++;
+        offset[(size_t) s * noff + d]++;
       } else {
         reuse = false;
       }
@@ -503,9 +511,8 @@ void FixHardsphereED::window_gather(double t0, double dt)
     configure_core(core_options());
     const double q = pair->shape_factor();
     ed.resize(ntotal);
-    prev_tags.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
-      const int k = order[s].second;
+      const int k = order[s];
       granfric::EDParticle &p = ed.particle(s);
       p.x = granfric::Vec3(field(k, 1), field(k, 2), field(k, 3));
       p.v = granfric::Vec3(field(k, 4), field(k, 5), field(k, 6));
@@ -515,12 +522,13 @@ void FixHardsphereED::window_gather(double t0, double dt)
       p.q = q;
       p.type = (int) field(k, 12);
       p.t_last = field(k, 13);
-      prev_tags[s] = order[s].first;
     }
+    same_atoms = true;
     ed.set_clock(t0);
     ed.start();
     report_overlaps(false);
-    offset.assign((size_t) ntotal * 3, 0);
+    noff = domain->dimension;
+    offset.assign((size_t) ntotal * noff, 0);
     totals[QUEUE_REBUILDS] += 1.0;
     totals[STEP_PREDICTED] = (double) ntotal;
   }
@@ -528,8 +536,8 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // kicks of fix hardsphere/kick at their exact times inside the window
   if (!kicks.empty()) {
     cmask.resize(ntotal);
-    for (int s = 0; s < ntotal; s++) cmask[s] = (int) field(order[s].second, 14);
-    schedule_kicks(t0, dt, prev_tags, cmask, false);
+    for (int s = 0; s < ntotal; s++) cmask[s] = (int) field(order[s], 14);
+    schedule_kicks(t0, dt, otags, cmask, false);
   }
 
   ed.set_accounting(granfric::EDAccounting());
@@ -542,8 +550,8 @@ void FixHardsphereED::window_gather(double t0, double dt)
                "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
                "last one with atom {} at time {}: inelastic collapse. Use the TC model (keyword "
                "tc) or raise maxevents",
-               (tagint) order[e.i].first, e.n, update->ntimestep, maxevents,
-               (tagint) order[e.j].first, t0 + e.t);
+               (tagint) otags[e.i], e.n, update->ntimestep, maxevents,
+               (tagint) otags[e.j], t0 + e.t);
   } catch (std::exception &e) {
     queue_valid = false;
     error->all(FLERR, "Fix hardsphere/ed: {}", e.what());
@@ -553,20 +561,18 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
   // atom more than half a box outside (a step longer than a box crossing) is wrapped here and
   // its image flags follow. The same arithmetic on every rank.
-  std::vector<int> &slocal = jumped;    // owned atom of each core particle, or -1
-  slocal.assign(ntotal, -1);
-  for (int i = 0; i < nlocal; i++) slocal[mine[i]] = i;
   imageint *image = atom->image;
   double wlo[3], whi[3];    // more than half a period outside the box (none if not periodic)
   for (int d = 0; d < 3; d++) {
     wlo[d] = domain->periodicity[d] ? domain->boxlo[d] - 0.5 * domain->prd[d] : -INF;
     whi[d] = domain->periodicity[d] ? domain->boxhi[d] + 0.5 * domain->prd[d] : INF;
   }
-  for (int s = 0; s < ntotal; s++) {
-    int *off = &offset[(size_t) s * 3];
+  // core particle s; i: its owned atom, or -1
+  auto take_back = [&](int s, int i) {
+    int *off = &offset[(size_t) s * noff];
     int dimg[3] = {0, 0, 0};
     const granfric::Vec3 xs = ed.position(s, dt);
-    for (int d = 0; d < 3; d++) {
+    for (int d = 0; d < noff; d++) {
       const double y = xs[d] - off[d] * wper[d];
       if (y < wlo[d] || y >= whi[d]) {
         const double L = domain->prd[d];
@@ -574,8 +580,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
         off[d] += dimg[d];
       }
     }
-    const int i = slocal[s];
-    if (i < 0) continue;
+    if (i < 0) return;
     const granfric::EDParticle &p = ed.particle(s);
     double w[9];
     written_state(s, dt, w, &xs);
@@ -584,6 +589,15 @@ void FixHardsphereED::window_gather(double t0, double dt)
     memcpy(v[i], w + 3, 3 * sizeof(double));
     memcpy(omega[i], w + 6, 3 * sizeof(double));
     tlast[i] = p.t_last == -INF ? -INF : p.t_last + t0;
+  };
+  if (nprocs == 1) {
+    // every core particle is an owned atom
+    for (int i = 0; i < nlocal; i++) take_back(mine[i], i);
+  } else {
+    std::vector<int> &slocal = jumped;    // owned atom of each core particle, or -1
+    slocal.assign(ntotal, -1);
+    for (int i = 0; i < nlocal; i++) slocal[mine[i]] = i;
+    for (int s = 0; s < ntotal; s++) take_back(s, slocal[s]);
   }
   queue_valid = true;
   prev_dt = dt;
@@ -619,7 +633,7 @@ double FixHardsphereED::memory_usage()
 {
   auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
   return (double) atom->nmax * sizeof(double) + (double) ed.memory_bytes() + bytes(sendbuf) +
-      bytes(recvbuf) + bytes(order) + bytes(mine) + bytes(prev_tags) + bytes(offset) +
+      bytes(recvbuf) + bytes(order) + bytes(otags) + bytes(mine) + bytes(offset) +
       bytes(jumped) + bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
       bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags);
 }

@@ -90,13 +90,15 @@ class FixHardsphereED : public Fix {
   // gathered system (every rank runs the whole window; see doc)
   std::vector<double> sendbuf, recvbuf;
   std::vector<int> counts, displs;
-  std::vector<std::pair<double, int>> order;    // (tag, index in recvbuf) sorted by tag
+  std::vector<int> order;                       // index in recvbuf (or the atom arrays) by tag
+  std::vector<double> otags;                    // the tags in that order (= the core's order)
   std::vector<int> mine;                        // core index of each owned atom
   // event queue kept across windows (see initial_integrate)
   bool queue_valid;
   double prev_dt;
-  std::vector<double> prev_tags;                // atom IDs in core order
+  bool same_atoms = false;                      // otags unchanged since the core's last start
   std::vector<int> offset;                      // periods between the core's frame and LAMMPS's
+  int noff = 3;                                 //   per core particle (the dimension)
   double wper[3] = {0, 0, 0};                   // period per offset (0: not periodic)
   std::vector<int> jumped;                      // scratch: owned atom of each core particle
   std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window

@@ -112,6 +112,7 @@ void EventDriven::resize(int n)
   acct = EDAccounting();
   P.assign(n, EDParticle());
   S.assign(n, Sched());
+  WT.clear();
   img.assign(n, Image{{0, 0, 0}});
   ext.resize(n);
   loc.resize(n);
@@ -167,6 +168,11 @@ void EventDriven::renumber(const std::vector<int> &order)
       if (Q[k].last_partner >= 0) Q[k].last_partner = newloc[Q[k].last_partner];
       newext[k] = ext[o];
     }
+    if (!WT.empty()) {
+      big_vector<double> W(n);
+      for (int k = 0; k < n; k++) W[k] = WT[order[k]];
+      WT.swap(W);
+    }
     P.swap(Q);
     S.swap(T);
     img.swap(M);
@@ -197,7 +203,8 @@ void EventDriven::setup_cells()
       throw std::invalid_argument("box length " + std::to_string(L[d]) +
                                   " is smaller than the largest contact distance " +
                                   std::to_string(2.0 * amax));
-    nc[d] = sigma > 0.0 ? (int) std::min(std::floor(L[d] / sigma), double(1 << 20)) : 1;
+    // (cell coordinates are 16-bit: a longer box gets wider cells)
+    nc[d] = sigma > 0.0 ? (int) std::min(std::floor(L[d] / sigma), 32767.0) : 1;
     nc[d] = std::max(1, nc[d]);
     cw[d] = L[d] / nc[d];
   }
@@ -212,7 +219,6 @@ void EventDriven::setup_cells()
   }
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
   next.assign(P.size(), -1);
-  prev.assign(P.size(), -1);
   cell_amax = amax;
   for (size_t i = 0; i < P.size(); i++) {
     if (S[i].gone) continue;
@@ -235,28 +241,24 @@ void EventDriven::place(int i)
     if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
     long k = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
     img[i].k[d] = (int) k;
-    s.c[d] = (int) (u - k * nc[d]);
+    s.c[d] = (int16_t) (u - k * nc[d]);
   }
 }
 
 void EventDriven::cell_insert(int i)
 {
   const int c = cell_of(i);
-  const int h = head[c];
-  next[i] = h;
-  prev[i] = -1;
-  if (h >= 0) prev[h] = i;
+  next[i] = head[c];
   head[c] = i;
 }
 
+// singly linked cell lists: a cell holds about one particle, so finding i's predecessor costs
+// less than keeping a back link (4 bytes per particle) up to date
 void EventDriven::cell_remove(int i)
 {
-  const int c = cell_of(i);
-  if (prev[i] >= 0)
-    next[prev[i]] = next[i];
-  else
-    head[c] = next[i];
-  if (next[i] >= 0) prev[next[i]] = prev[i];
+  int *link = &head[cell_of(i)];
+  while (*link != i) link = &next[*link];
+  *link = next[i];
 }
 
 // ---------------------------------------------------------------- prediction
@@ -442,7 +444,7 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
       s.coff[2] = o2;
     }
   };
-  const int *c = s.c;
+  const int16_t *c = s.c;
   const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
   const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
   const int x0 = FULL ? -1 : dlo[0], x1 = FULL ? 1 : dhi[0];
@@ -595,7 +597,8 @@ void EventDriven::predict_all()
         }
   for (int i = 0; i < n; i++) {
     if (S[i].gone) continue;
-    const int *pk = img[i].k, *c = S[i].c;
+    const int *pk = img[i].k;
+    const int16_t *c = S[i].c;
     for (int j = next[i]; j >= 0; j = next[j]) {    // the rest of its own cell
       const int *qk = img[j].k;
       pair(i, j, pk[0] - qk[0], pk[1] - qk[1], pk[2] - qk[2]);
@@ -632,8 +635,8 @@ double EventDriven::schedule(int i)
     et = p.xt;
     p.ekind = CROSSING;
   }
-  if (p.wt < et) {
-    et = p.wt;
+  if (!WT.empty() && WT[i] < et) {
+    et = WT[i];
     p.ekind = WALL;
   }
   return et;
@@ -799,8 +802,8 @@ void EventDriven::predict_walls(int i, const Vec3 &xi, const Vec3 &vi)
     else
       t = now + (w.side < 0 ? crossing_time(xi[d], vi[d], opt.gravity[d], w.pos + a, -1)
                             : crossing_time(xi[d], vi[d], opt.gravity[d], w.pos - a, +1));
-    if (t < p.wt) {
-      p.wt = t;
+    if (t < WT[i]) {
+      WT[i] = t;
       p.wall = (int8_t) k;
     }
   }
@@ -848,7 +851,7 @@ void EventDriven::collide_wall(int i)
 {
   EDParticle &p = P[i];
   Sched &s = S[i];
-  const double t = s.wt;
+  const double t = WT[i];
   advance(i, t);
   const EDWall &w = opt.walls[s.wall];
   Vec3 n;
@@ -1023,6 +1026,7 @@ void EventDriven::start()
   now = 0.0;
   const int n = (int) P.size();
   for (auto &s : S) s.ncollisions = 0;
+  WT.assign(opt.walls.empty() ? 0 : n, NEVER);
   for (auto &p : P) {
     p.t = 0.0;
     p.ncoll = 0;
@@ -1181,8 +1185,8 @@ void EventDriven::rebase(double dt)
   for (auto &s : S) {
     s.ct -= dt;
     s.xt -= dt;
-    s.wt -= dt;
   }
+  for (auto &t : WT) t -= dt;
   queue.shift(dt);
   now -= dt;
   clock += dt;

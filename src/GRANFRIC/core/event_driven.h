@@ -198,9 +198,9 @@ class EventDriven {
   // bytes held (particles, index maps, cells, queue, optional records)
   size_t memory_bytes() const
   {
-    return P.capacity() * sizeof(EDParticle) + S.capacity() * sizeof(Sched) +
+    return P.capacity() * sizeof(EDParticle) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
-        (head.capacity() + next.capacity() + prev.capacity()) * sizeof(int) + queue.memory_bytes() +
+        (head.capacity() + next.capacity()) * sizeof(int) + queue.memory_bytes() +
         paths.capacity() * sizeof(double) + acct.key.capacity() * sizeof(long) +
         acct.counted.capacity() + gtimes.capacity() * sizeof(double);
   }
@@ -215,23 +215,25 @@ class EventDriven {
 
  private:
   big_vector<EDParticle> P;             // internal order
-  // a particle's own event bookkeeping, read only when it is predicted or processed
-  struct Sched {
-    int c[3] = {0, 0, 0};     // cell coordinates within the grid
+  // a particle's own event bookkeeping, read only when it is predicted or processed: one cache
+  // line (the next wall collision, which only systems with walls have, is kept apart in WT)
+  struct alignas(64) Sched {
+    int16_t c[3] = {0, 0, 0}; // cell coordinates within the grid (at most 32767 cells a side)
+    int8_t gone = 0;          // an empty slot (remove()): no cell, no event
+    int8_t ekind = 0;         // scheduled event: NONE, COLLISION, CROSSING, WALL
+    int8_t xdim = 0, xdir = 0;    // crossing dimension and direction (+1 / -1)
+    int8_t wall = -1;         // which wall
     int cpartner = -1;        // collision candidate: partner,
     uint32_t ccount = 0;      //   partner's ncoll at prediction (stale when it changed),
+    uint32_t ncollisions = 0; // collisions in this window (event cap)
     int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * L
     int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
-    int8_t gone = 0;          // an empty slot (remove()): no cell, no event (fills padding)
     double ct = NEVER;        //   and time
-    double xt = NEVER;        // next cell crossing: time,
-    double wt = NEVER;        // next wall collision: time
-    uint32_t ncollisions = 0; // collisions in this window (event cap)
-    int8_t xdim = 0, xdir = 0;    // crossing dimension and direction (+1 / -1)
-    int8_t ekind = 0;         // scheduled event: NONE, COLLISION, CROSSING, WALL
-    int8_t wall = -1;         // which wall
+    double xt = NEVER;        // next cell crossing: time
   };
+  static_assert(sizeof(Sched) == 64, "a particle's schedule fills one cache line");
   big_vector<Sched> S;
+  big_vector<double> WT;                 // next wall collision: time (empty without walls)
   // periodic image of each particle's cell, read for every candidate partner (kept apart and
   // small so the candidates' images stay in cache)
   struct Image {
@@ -256,7 +258,7 @@ class EventDriven {
   Vec3 L;                                // box lengths
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
-  big_vector<int> head, next, prev;     // cell lists
+  big_vector<int> head, next;           // cell lists (singly linked)
   double cell_amax = 0.0;                // largest radius the cells admit
   bool started = false;                  // start() done since resize()
   std::vector<int> dirty;                // external indices changed since the last window
@@ -265,8 +267,9 @@ class EventDriven {
   void no_events(int i)                  // no collision candidate, crossing or wall event
   {
     Sched &s = S[i];
-    s.ct = s.xt = s.wt = NEVER;
+    s.ct = s.xt = NEVER;
     s.cpartner = -1;
+    if (!WT.empty()) WT[i] = NEVER;
   }
   EventQueue queue;                      // particles by event time
   EDStats stats;
@@ -293,7 +296,7 @@ class EventDriven {
   }
   int cell_of(int i) const
   {
-    const int *c = S[i].c;
+    const int16_t *c = S[i].c;
     return (c[2] * nc[1] + c[1]) * nc[0] + c[0];
   }
   void cell_insert(int i);
@@ -314,9 +317,10 @@ class EventDriven {
   double schedule(int i);                // ekind from the candidates; returns the event time
   void predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
   {
-    S[i].wt = NEVER;
     S[i].wall = -1;
-    if (!opt.walls.empty()) predict_walls(i, xi, vi);
+    if (WT.empty()) return;
+    WT[i] = NEVER;
+    predict_walls(i, xi, vi);
   }
   void predict_walls(int i, const Vec3 &xi, const Vec3 &vi);    // (there are walls)
   void collide_wall(int i);
