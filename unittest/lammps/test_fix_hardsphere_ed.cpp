@@ -205,6 +205,14 @@ TEST(FixHardsphereED, QueueKeptAcrossRunsUnlessConfigurationChanges)
   EXPECT_EQ(fix->compute_vector(5), 2.0) << "new coefficients: the queue must be rebuilt";
   run(b.get(), "velocity all scale 1.5\nrun 5 post no");
   EXPECT_EQ(fix->compute_vector(5), 3.0) << "velocities changed by a command: rebuilt";
+  // the same atoms in another storage order (LAMMPS sorts them at every reneighboring now)
+  std::vector<LAMMPS_NS::tagint> before(b->atom->tag, b->atom->tag + b->atom->nlocal);
+  run(b.get(), "atom_modify sort 1 1.0\nrun 20 post no");
+  std::vector<LAMMPS_NS::tagint> after(b->atom->tag, b->atom->tag + b->atom->nlocal);
+  EXPECT_NE(before, after) << "the atoms were sorted in memory";
+  EXPECT_EQ(fix->compute_vector(5), 3.0) << "the same atoms in another order: the queue is kept";
+  run(b.get(), "group one id 7\ndelete_atoms group one\nrun 5 post no");
+  EXPECT_EQ(fix->compute_vector(5), 4.0) << "an atom fewer: rebuilt";
 }
 
 // r = 0.5 at area fraction 0.6: inelastic collapse without the TC model
