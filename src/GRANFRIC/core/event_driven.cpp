@@ -257,7 +257,10 @@ void EventDriven::cell_insert(int i)
 void EventDriven::cell_remove(int i)
 {
   int *link = &head[cell_of(i)];
-  while (*link != i) link = &next[*link];
+  while (*link != i) {
+    if (*link < 0) throw std::logic_error("EventDriven: a particle is missing from its cell list");
+    link = &next[*link];
+  }
   *link = next[i];
 }
 
