@@ -353,33 +353,28 @@ void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 // around its cell; periodic images by integer offsets
 void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
 {
-  if (opt.dim == 2) {
-    if (has_gravity)
-      scan_t<2, true, false>(i, xi, vi, dlo, dhi);
-    else
-      scan_t<2, false, false>(i, xi, vi, dlo, dhi);
-  } else {
-    if (has_gravity)
-      scan_t<3, true, false>(i, xi, vi, dlo, dhi);
-    else
-      scan_t<3, false, false>(i, xi, vi, dlo, dhi);
-  }
+  scan_in<false>(i, xi, vi, dlo, dhi);
 }
 
 void EventDriven::scan_full(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  static const int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
-  static const int lo2[3] = {-1, -1, 0}, hi2[3] = {1, 1, 0};
+  static const int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};    // (in 2d z is not scanned)
+  scan_in<true>(i, xi, vi, lo, hi);
+}
+
+template <bool FULL>
+void EventDriven::scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+{
   if (opt.dim == 2) {
     if (has_gravity)
-      scan_t<2, true, true>(i, xi, vi, lo2, hi2);
+      scan_t<2, true, FULL>(i, xi, vi, dlo, dhi);
     else
-      scan_t<2, false, true>(i, xi, vi, lo2, hi2);
+      scan_t<2, false, FULL>(i, xi, vi, dlo, dhi);
   } else {
     if (has_gravity)
-      scan_t<3, true, true>(i, xi, vi, lo, hi);
+      scan_t<3, true, FULL>(i, xi, vi, dlo, dhi);
     else
-      scan_t<3, false, true>(i, xi, vi, lo, hi);
+      scan_t<3, false, FULL>(i, xi, vi, dlo, dhi);
   }
 }
 

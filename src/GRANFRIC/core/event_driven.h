@@ -312,6 +312,8 @@ class EventDriven {
   // collision candidates in the block of cells at offsets dlo..dhi
   void scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
   void scan_full(int i, const Vec3 &xi, const Vec3 &vi);    // offsets -1..1 in every dimension
+  template <bool FULL>
+  void scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
   template <int DIM, bool GRAV, bool FULL>
   void scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
   double schedule(int i);                // ekind from the candidates; returns the event time
