@@ -348,9 +348,8 @@ void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<dou
 }
 
 // wrapped here: x jumped by whole periods, the image flags count them
-void FixHardsphereED::shift_image(imageint &image, const int *dimg)
+void FixHardsphereED::wrap_image(imageint &image, const int *dimg)
 {
-  if (!(dimg[0] || dimg[1] || dimg[2])) return;
   imageint xb = (image & IMGMASK) - IMGMAX + dimg[0];
   imageint yb = (image >> IMGBITS & IMGMASK) - IMGMAX + dimg[1];
   imageint zb = (image >> IMG2BITS) - IMGMAX + dimg[2];

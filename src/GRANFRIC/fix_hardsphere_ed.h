@@ -113,7 +113,12 @@ class FixHardsphereED : public Fix {
   std::vector<granfric::LawParams> law_table() const;
   void configure_core(const granfric::EDOptions &o);
   double window_start_time() const;
-  static void shift_image(imageint &image, const int *dimg);
+  // image flags of an atom that was wrapped by dimg periods (most are not: inline test)
+  static void shift_image(imageint &image, const int *dimg)
+  {
+    if (dimg[0] | dimg[1] | dimg[2]) wrap_image(image, dimg);
+  }
+  static void wrap_image(imageint &image, const int *dimg);
   void window_gather(double t0, double dt);
   bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);

@@ -80,12 +80,22 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // ------------------------------------------------ the reach D and the shell W
   // speed bound: all of an atom's kinetic energy as translation, plus what a vibrating wall
   // can add (twice its largest speed)
+  // (one pass over the atoms also gives this rank's bounding box, for the regions below)
   double mx[2] = {0.0, 0.0}, gmx[2];
+  double mybb[6];
+  for (int d = 0; d < 3; d++) {
+    mybb[d] = INF;
+    mybb[3 + d] = -INF;
+  }
   for (int i = 0; i < nlocal; i++) {
     const double w2 = omega[i][0] * omega[i][0] + omega[i][1] * omega[i][1] + omega[i][2] * omega[i][2];
     const double v2 = v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2];
     mx[0] = std::max(mx[0], v2 + q * radius[i] * radius[i] * w2);
     mx[1] = std::max(mx[1], radius[i]);
+    for (int d = 0; d < 3; d++) {
+      mybb[d] = std::min(mybb[d], x[i][d]);
+      mybb[3 + d] = std::max(mybb[3 + d], x[i][d]);
+    }
   }
   mx[0] = std::sqrt(mx[0]);    // (the root of the largest: the largest root, exactly)
   MPI_Allreduce(mx, gmx, 2, MPI_DOUBLE, MPI_MAX, world);
@@ -99,16 +109,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
 
   // ------------------------------------------------ every rank's region (owned box + W)
   std::vector<double> bb(6 * nprocs);
-  double mybb[6];
-  for (int d = 0; d < 3; d++) {
-    mybb[d] = INF;
-    mybb[3 + d] = -INF;
-  }
-  for (int i = 0; i < nlocal; i++)
-    for (int d = 0; d < 3; d++) {
-      mybb[d] = std::min(mybb[d], x[i][d]);
-      mybb[3 + d] = std::max(mybb[3 + d], x[i][d]);
-    }
   MPI_Allgather(mybb, 6, MPI_DOUBLE, bb.data(), 6, MPI_DOUBLE, world);
   std::vector<Shell> reg(nprocs);
   for (int r = 0; r < nprocs; r++)
@@ -529,7 +529,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     double xe[3];
     ed.position(e, dt).to(xe);
     int dimg[3] = {0, 0, 0};
-    for (int d = 0; d < 3; d++) {
+    for (int d = 0; d < dim; d++) {    // (nothing moves in z in 2d)
       if (xe[d] < wlo[d] || xe[d] >= whi[d]) {
         const double L = domain->prd[d];
         dimg[d] = (int) std::floor((xe[d] - domain->boxlo[d]) / L);
