@@ -266,87 +266,56 @@ void EventDriven::cell_remove(int i)
 
 // ---------------------------------------------------------------- prediction
 
-// straight flight in every dimension (no gravity), the dimension known at compile time: only
-// the boundary ahead can be reached (none beyond an edge cell); the same arithmetic as below
-template <int DIM>
-void EventDriven::predict_crossing_straight(int i, const Vec3 &xi, const Vec3 &vi)
+void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  if (opt.dim == 2) {
+    if (has_gravity)
+      predict_crossing_t<2, true>(i, xi, vi);
+    else
+      predict_crossing_t<2, false>(i, xi, vi);
+  } else {
+    if (has_gravity)
+      predict_crossing_t<3, true>(i, xi, vi);
+    else
+      predict_crossing_t<3, false>(i, xi, vi);
+  }
+}
+
+// the dimension and whether there is gravity at all known at compile time
+template <int DIM, bool GRAV>
+void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
 {
   Sched &p = S[i];
   const int *k = img[i].k;
   double xt = NEVER;
   int xdim = 0, xdir = 0;
+  auto offer = [&](double t, int d, int dir) {
+    if (t < xt) xt = t, xdim = d, xdir = dir;
+  };
   for (int d = 0; d < DIM; d++) {
     const double v = vi[d];
-    if (v > 0.0) {
-      if (!opt.periodic[d] && p.c[d] == nc[d] - 1) continue;
-      const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
-      const double t = now + std::max(0.0, (bhi - xi[d]) / v);
-      if (t < xt) xt = t, xdim = d, xdir = 1;
-    } else if (v < 0.0) {
-      if (!opt.periodic[d] && p.c[d] == 0) continue;
-      const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
-      const double t = now + std::max(0.0, (blo - xi[d]) / v);
-      if (t < xt) xt = t, xdim = d, xdir = -1;
-    }
-  }
-  p.xt = xt;
-  if (xt < NEVER) p.xdim = (int8_t) xdim, p.xdir = (int8_t) xdir;
-}
-
-void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
-{
-  if (!has_gravity) {
-    if (opt.dim == 2)
-      predict_crossing_straight<2>(i, xi, vi);
-    else
-      predict_crossing_straight<3>(i, xi, vi);
-    return;
-  }
-  Sched &p = S[i];
-  const int *k = img[i].k;
-  p.xt = NEVER;
-  for (int d = 0; d < opt.dim; d++) {
-    const double v = vi[d];
-    if (opt.gravity[d] == 0.0) {
-      // straight flight: only the boundary ahead can be reached (none beyond an edge cell)
+    const bool top = !opt.periodic[d] && p.c[d] == nc[d] - 1;    // no boundary beyond an edge cell
+    const bool bottom = !opt.periodic[d] && p.c[d] == 0;
+    if (!GRAV || opt.gravity[d] == 0.0) {
+      // straight flight: only the boundary ahead can be reached
       if (v > 0.0) {
-        if (!opt.periodic[d] && p.c[d] == nc[d] - 1) continue;
+        if (top) continue;
         const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
-        const double t = now + std::max(0.0, (bhi - xi[d]) / v);
-        if (t < p.xt) {
-          p.xt = t;
-          p.xdim = (int8_t) d;
-          p.xdir = 1;
-        }
+        offer(now + std::max(0.0, (bhi - xi[d]) / v), d, 1);
       } else if (v < 0.0) {
-        if (!opt.periodic[d] && p.c[d] == 0) continue;
+        if (bottom) continue;
         const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
-        const double t = now + std::max(0.0, (blo - xi[d]) / v);
-        if (t < p.xt) {
-          p.xt = t;
-          p.xdim = (int8_t) d;
-          p.xdir = -1;
-        }
+        offer(now + std::max(0.0, (blo - xi[d]) / v), d, -1);
       }
       continue;
     }
     const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
     const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
-    double tup = now + crossing_time(xi[d], v, opt.gravity[d], bhi, +1);
-    double tdn = now + crossing_time(xi[d], v, opt.gravity[d], blo, -1);
-    if (!opt.periodic[d] && p.c[d] == nc[d] - 1) tup = NEVER;
-    if (!opt.periodic[d] && p.c[d] == 0) tdn = NEVER;
-    if (tup < p.xt) {
-      p.xt = tup;
-      p.xdim = (int8_t) d;
-      p.xdir = 1;
-    }
-    if (tdn < p.xt) {
-      p.xt = tdn;
-      p.xdim = (int8_t) d;
-      p.xdir = -1;
-    }
+    offer(top ? NEVER : now + crossing_time(xi[d], v, opt.gravity[d], bhi, +1), d, 1);
+    offer(bottom ? NEVER : now + crossing_time(xi[d], v, opt.gravity[d], blo, -1), d, -1);
   }
+  p.xt = xt;
+  if (xt < NEVER) p.xdim = (int8_t) xdim, p.xdir = (int8_t) xdir;
 }
 
 // collision candidates of i among the particles of the cells at offsets dlo..dhi (inclusive)
@@ -421,18 +390,8 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
         v2 += dtj * g.z;
       }
     }
-    // pair_contact_time(xi - xj, vi - vj, a_i + a_j)
-    const double r0 = xi.x - x0, r1 = xi.y - x1, r2 = xi.z - x2;
-    const double u0 = vi.x - v0, u1 = vi.y - v1, u2 = DIM == 3 ? vi.z - v2 : 0.0;
-    const double b = DIM == 3 ? r0 * u0 + r1 * u1 + r2 * u2 : r0 * u0 + r1 * u1;
-    if (b >= 0.0) return;
-    const double w2 = DIM == 3 ? u0 * u0 + u1 * u1 + u2 * u2 : u0 * u0 + u1 * u1;
-    const double sig = p.a + q.a;
-    const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sig * sig;
-    const double disc = b * b - w2 * c;
-    if (disc < 0.0) return;
-    const double tau = c / (-b + std::sqrt(disc));
-    const double t = now + (tau > 0.0 ? tau : 0.0);
+    const double t = now + pair_contact_time<DIM>(xi.x - x0, xi.y - x1, xi.z - x2, vi.x - v0,
+                                                  vi.y - v1, DIM == 3 ? vi.z - v2 : 0.0, p.a + q.a);
     if (t < s.ct) {
       s.ct = t;
       s.cpartner = j;

@@ -307,8 +307,8 @@ class EventDriven {
   void predict(int i, bool pairs = true);
   // next cell crossing only; xi, vi: the particle's state now
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
-  template <int DIM>
-  void predict_crossing_straight(int i, const Vec3 &xi, const Vec3 &vi);
+  template <int DIM, bool GRAV>
+  void predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi);
   // collision candidates in the block of cells at offsets dlo..dhi
   void scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
   void scan_full(int i, const Vec3 &xi, const Vec3 &vi);    // offsets -1..1 in every dimension

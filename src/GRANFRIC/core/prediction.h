@@ -13,17 +13,25 @@ namespace granfric {
 constexpr double NEVER = std::numeric_limits<double>::infinity();
 
 // Earliest tau >= 0 at which |r + v tau| = sigma with the pair approaching (r.v < 0); NEVER if
-// none. A pair that already overlaps and approaches gets tau = 0.
-inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
+// none. A pair that already overlaps and approaches gets tau = 0. Components given one by one;
+// in 2d (DIM = 2) the relative velocity has no z component and r2 is a constant z distance.
+template <int DIM>
+inline double pair_contact_time(double r0, double r1, double r2, double v0, double v1, double v2,
+                                double sigma)
 {
-  const double b = dot(r, v);
+  const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
   if (b >= 0.0) return NEVER;
-  const double v2 = norm2(v);
-  const double c = norm2(r) - sigma * sigma;
-  const double disc = b * b - v2 * c;
+  const double w2 = DIM == 3 ? v0 * v0 + v1 * v1 + v2 * v2 : v0 * v0 + v1 * v1;
+  const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
+  const double disc = b * b - w2 * c;
   if (disc < 0.0) return NEVER;
   const double tau = c / (-b + std::sqrt(disc));    // stable form of (-b - sqrt(disc))/v2
   return tau > 0.0 ? tau : 0.0;
+}
+
+inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
+{
+  return pair_contact_time<3>(r.x, r.y, r.z, v.x, v.y, v.z, sigma);
 }
 
 // First tau >= 0 at which x + v tau + g tau^2 / 2 reaches B moving upward (dir = +1: velocity
