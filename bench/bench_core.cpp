@@ -38,7 +38,7 @@ int main(int argc, char **argv)
   std::mt19937_64 gen(1);
   std::normal_distribution<double> G(0, 1);
   for (long i = 0; i < N; i++) {
-    EDParticle &p = ed.particle((int) i);
+    auto p = ed.particle((int) i);
     const long ix = i % m, iy = (i / m) % m, iz = i / ((long) m * m);
     p.x = Vec3((ix + 0.5) * h, (iy + 0.5) * h, dim == 3 ? (iz + 0.5) * h : 0.5);
     p.v = Vec3(G(gen), G(gen), dim == 3 ? G(gen) : 0.0);

@@ -89,17 +89,21 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
   restart_peratom = 1;
   for (double &t : totals) t = 0.0;
 
-  FixHardsphereED::grow_arrays(atom->nmax);
-  atom->add_callback(Atom::GROW);
-  atom->add_callback(Atom::RESTART);
-  for (int i = 0; i < atom->nmax; i++) tlast[i] = -INF;
+  // the last collision times matter only to the TC model: without it they are not kept
+  if (tc > 0.0) {
+    FixHardsphereED::grow_arrays(atom->nmax);
+    atom->add_callback(Atom::GROW);
+    atom->add_callback(Atom::RESTART);
+  }
 }
 
 FixHardsphereED::~FixHardsphereED()
 {
   if (copymode) return;
-  atom->delete_callback(id, Atom::GROW);
-  atom->delete_callback(id, Atom::RESTART);
+  if (tlast) {
+    atom->delete_callback(id, Atom::GROW);
+    atom->delete_callback(id, Atom::RESTART);
+  }
   memory->destroy(tlast);
 }
 
@@ -313,14 +317,14 @@ void FixHardsphereED::pack_atom(int i, double t0, double *b) const
   b[10] = atom->radius[i];
   b[11] = atom->rmass[i];
   b[12] = (double) atom->type[i];
-  b[13] = tlast[i] == -INF ? -INF : tlast[i] - t0;
+  b[13] = tlast_since(i, t0);
   b[14] = (double) atom->mask[i];
 }
 
 // the kicks of every fix hardsphere/kick in [t0, t0 + dt) as global events of the core, applied
 // to core particles with IDs tags and masks; with shifts, the momentum shift of each kick is
 // summed over all ranks (collective: every rank calls this with the same kicks)
-void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<double> &tags,
+void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
                                      const std::vector<int> &masks, bool shifts)
 {
   struct Kick {
@@ -421,7 +425,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
       case 10: return radius[k];
       case 11: return rmass[k];
       case 12: return (double) type[k];
-      case 13: return tlast[k] == -INF ? -INF : tlast[k] - t0;
+      case 13: return tlast_since(k, t0);
       default: return (double) amask[k];
     }
   };
@@ -438,7 +442,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
   // step's order usually still holds
   bool same_order = (int) order.size() == ntotal;
-  for (int s = 0; same_order && s < ntotal; s++) same_order = field(order[s], 0) == otags[s];
+  for (int s = 0; same_order && s < ntotal; s++) same_order = (tagint) field(order[s], 0) == otags[s];
   if (!same_order) {
     order.resize(ntotal);
     for (int k = 0; k < ntotal; k++) order[k] = k;
@@ -447,18 +451,14 @@ void FixHardsphereED::window_gather(double t0, double dt)
     bool same = same_atoms && (int) otags.size() == ntotal;
     otags.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
-      const double t = field(order[s], 0);
+      const tagint t = (tagint) field(order[s], 0);
       same = same && otags[s] == t;
       otags[s] = t;
     }
     same_atoms = same;
   }
-  mine.assign(nlocal, -1);
+  // core particle s is this rank's atom order[s] - myfirst if that lies in [0, nlocal)
   const int myfirst = displs[me] / NPACK;
-  for (int s = 0; s < ntotal; s++) {
-    const int k = order[s];
-    if (k >= myfirst && k < myfirst + nlocal) mine[k - myfirst] = s;
-  }
 
   for (int d = 0; d < 3; d++) wper[d] = domain->periodicity[d] ? domain->prd[d] : 0.0;
 
@@ -470,7 +470,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
       (int) offset.size() == noff * ntotal;
   for (int s = 0; reuse && s < ntotal; s++) {
     const int k = order[s];
-    const granfric::EDParticle &p = ed.particle(s);
+    const auto p = ed.particle(s);
     double w[9];
     written_state(s, prev_dt, w);
     // this window's x, v, omega of the atom (in place on one rank)
@@ -512,7 +512,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     ed.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
       const int k = order[s];
-      granfric::EDParticle &p = ed.particle(s);
+      auto p = ed.particle(s);
       p.x = granfric::Vec3(field(k, 1), field(k, 2), field(k, 3));
       p.v = granfric::Vec3(field(k, 4), field(k, 5), field(k, 6));
       p.w = granfric::Vec3(field(k, 7), field(k, 8), field(k, 9));
@@ -580,23 +580,18 @@ void FixHardsphereED::window_gather(double t0, double dt)
       }
     }
     if (i < 0) return;
-    const granfric::EDParticle &p = ed.particle(s);
+    const auto p = ed.particle(s);
     double w[9];
     written_state(s, dt, w, &xs);
     shift_image(image[i], dimg);
     memcpy(x[i], w, 3 * sizeof(double));
     memcpy(v[i], w + 3, 3 * sizeof(double));
     memcpy(omega[i], w + 6, 3 * sizeof(double));
-    tlast[i] = p.t_last == -INF ? -INF : p.t_last + t0;
+    set_tlast(i, p.t_last, t0);
   };
-  if (nprocs == 1) {
-    // every core particle is an owned atom
-    for (int i = 0; i < nlocal; i++) take_back(mine[i], i);
-  } else {
-    std::vector<int> &slocal = jumped;    // owned atom of each core particle, or -1
-    slocal.assign(ntotal, -1);
-    for (int i = 0; i < nlocal; i++) slocal[mine[i]] = i;
-    for (int s = 0; s < ntotal; s++) take_back(s, slocal[s]);
+  for (int s = 0; s < ntotal; s++) {
+    const int i = order[s] - myfirst;
+    take_back(s, i >= 0 && i < nlocal ? i : -1);
   }
   queue_valid = true;
   prev_dt = dt;
@@ -631,15 +626,17 @@ double FixHardsphereED::compute_vector(int n)
 double FixHardsphereED::memory_usage()
 {
   auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
-  return (double) atom->nmax * sizeof(double) + (double) ed.memory_bytes() + bytes(sendbuf) +
-      bytes(recvbuf) + bytes(order) + bytes(otags) + bytes(mine) + bytes(offset) +
-      bytes(jumped) + bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
+  return (tlast ? (double) atom->nmax * sizeof(double) : 0.0) + (double) ed.memory_bytes() + bytes(sendbuf) +
+      bytes(recvbuf) + bytes(order) + bytes(otags) + bytes(offset) +
+      bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
       bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags);
 }
 
 void FixHardsphereED::grow_arrays(int nmax)
 {
   memory->grow(tlast, nmax, "hardsphere/ed:tlast");
+  for (int i = tlast_n; i < nmax; i++) tlast[i] = -INF;    // (new atoms: no collision yet)
+  tlast_n = std::max(tlast_n, nmax);
 }
 
 void FixHardsphereED::copy_arrays(int i, int j, int)
@@ -694,7 +691,7 @@ void FixHardsphereED::unpack_restart(int nlocal, int nth)
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
   m++;
-  tlast[nlocal] = extra[nlocal][m];
+  if (tlast) tlast[nlocal] = extra[nlocal][m];    // (a fix without the TC model drops them)
 }
 
 int FixHardsphereED::size_restart(int)

@@ -78,6 +78,17 @@ class FixHardsphereED : public Fix {
   long maxevents;
   int nlevels_respa;
   double *tlast;                         // per atom: absolute time of the last collision
+                                         //   (only with the TC model, else null)
+  int tlast_n = 0;                       // entries of tlast set (to -inf when grown)
+  // atom i's last collision time relative to t0 (-inf: none, or no TC model), and back
+  double tlast_since(int i, double t0) const
+  {
+    return !tlast || tlast[i] == -granfric::INF ? -granfric::INF : tlast[i] - t0;
+  }
+  void set_tlast(int i, double t_last, double t0)
+  {
+    if (tlast) tlast[i] = t_last == -granfric::INF ? -granfric::INF : t_last + t0;
+  }
   class PairHardsphere *pair;
 
   granfric::EventDriven ed;
@@ -91,8 +102,7 @@ class FixHardsphereED : public Fix {
   std::vector<double> sendbuf, recvbuf;
   std::vector<int> counts, displs;
   std::vector<int> order;                       // index in recvbuf (or the atom arrays) by tag
-  std::vector<double> otags;                    // the tags in that order (= the core's order)
-  std::vector<int> mine;                        // core index of each owned atom
+  std::vector<tagint> otags;                    // the tags in that order (= the core's order)
   // event queue kept across windows (see initial_integrate)
   bool queue_valid;
   double prev_dt;
@@ -100,7 +110,6 @@ class FixHardsphereED : public Fix {
   std::vector<int> offset;                      // periods between the core's frame and LAMMPS's
   int noff = 3;                                 //   per core particle (the dimension)
   double wper[3] = {0, 0, 0};                   // period per offset (0: not periodic)
-  std::vector<int> jumped;                      // scratch: owned atom of each core particle
   std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window
   std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window
   std::vector<int> cmask;                       // atom masks in core order
@@ -128,7 +137,7 @@ class FixHardsphereED : public Fix {
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
   bool check_overlaps = false;
   void report_overlaps(bool partial);
-  void schedule_kicks(double t0, double dt, const std::vector<double> &tags,
+  void schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
                       const std::vector<int> &masks, bool shifts);
 
   // domain-decomposed windows (fix_hardsphere_ed_domain.cpp)
@@ -148,7 +157,7 @@ class FixHardsphereED : public Fix {
   std::vector<uint8_t> sowned, sowned_prev;     // slot owned in this / the last window
   std::vector<int> sseen;                       // slot matched in this window (stamp)
   int dom_stamp = 0;
-  std::vector<double> kick_tags;
+  std::vector<tagint> kick_tags;
 };
 
 }    // namespace LAMMPS_NS

@@ -218,7 +218,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     const auto &sh = gshift[a - nlocal];
     for (int d = 0; d < 3; d++) in[1 + d] += sh[d] * domain->prd[d];
   };
-  auto set_state = [&](granfric::EDParticle &p, const double *in) {
+  auto set_state = [&](granfric::EDParticle p, const double *in) {
     p.x = Vec3(in[1], in[2], in[3]);
     p.v = Vec3(in[4], in[5], in[6]);
     p.w = Vec3(in[7], in[8], in[9]);
@@ -246,7 +246,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     // does slot sl hold, bit for bit, the state xa, va, wa, radius, mass, type (at window time 0)?
     auto holds = [&](int sl, const double *xa, const double *va, const double *wa, double ra,
                      double ma, int ta) {
-      const granfric::EDParticle &p = ed.particle(sl);
+      const auto p = ed.particle(sl);
       const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
       bool same = ra == p.a && ma == p.m && ta == p.type;
       for (int d = 0; d < 3 && same; d++) same = xa[d] == xs[d] && va[d] == vs[d] && wa[d] == p.w[d];
@@ -275,7 +275,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         dom_slot[(long) in[0]] = sl;
         gtag[sl] = (long) in[0];
       }
-      granfric::EDParticle &ps = ed.particle(sl);
+      auto ps = ed.particle(sl);
       // the last-collision time as its owner has it, unless this rank owned the atom already
       if (!was_mine) ps.t_last = in[13];
       if (!same) {
@@ -314,7 +314,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     dom_free.clear();
     lslot.resize(nlocal);
     for (int e = 0; e < ns; e++) {
-      granfric::EDParticle &p = ed.particle(e);
+      auto p = ed.particle(e);
       if (e >= n) {
         ed.remove(e);
         dom_free.push_back(ns - 1 - (e - n));
@@ -525,7 +525,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   for (int i = 0; i < nlocal; i++) {
     const int e = lslot[i];
-    const granfric::EDParticle &p = ed.particle(e);
+    const auto p = ed.particle(e);
     double xe[3];
     ed.position(e, dt).to(xe);
     int dimg[3] = {0, 0, 0};
@@ -540,7 +540,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     memcpy(x[i], xe, sizeof(xe));
     ed.velocity(e, dt).to(v[i]);
     p.w.to(omega[i]);
-    tlast[i] = p.t_last == -INF ? -INF : p.t_last + t0;
+    set_tlast(i, p.t_last, t0);
   }
   long lsum[8] = {last.collisions, last.sliding, last.tc_elastic, last.energy_created,
                   last.crossings, last.wall_collisions, last.global_events, repredicted};

@@ -125,7 +125,7 @@ granfric::Vec3 FixHardsphereKick::momentum_shift(long k, int dim) const
   return (1.0 / all[3]) * granfric::Vec3(all[0], all[1], all[2]);
 }
 
-void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<double> &tag,
+void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<tagint> &tag,
                               const std::vector<int> &mask, long k, int dim,
                               const granfric::Vec3 *dvcm_given) const
 {
@@ -139,14 +139,14 @@ void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<doubl
     const long t = (long) tag[e];
     dv[e] = vdr * Vec3(gaussian(seed, t, k, 0), gaussian(seed, t, k, 1),
                        dim == 3 ? gaussian(seed, t, k, 2) : 0.0);
-    const granfric::EDParticle &p = ed.particle(e);
+    const auto p = ed.particle(e);
     P += p.m * dv[e];
     M += p.m;
   }
   const Vec3 dvcm = dvcm_given ? *dvcm_given : (momentum && M > 0.0) ? (1.0 / M) * P : Vec3();
   for (int e = 0; e < n; e++) {
     if (!(mask[e] & groupbit)) continue;
-    granfric::EDParticle &p = ed.particle(e);
+    auto p = ed.particle(e);
     p.v += dv[e] - dvcm;
     if (spin > 0.0) {
       // rotational power = spin x translational power: d_tr v_dr^2 m / 2 per kick against

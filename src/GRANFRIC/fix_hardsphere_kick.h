@@ -34,7 +34,7 @@ class FixHardsphereKick : public Fix {
   // apply kick k to the gathered system: tag[e], mask[e] of core particle e
   // (dvcm: the velocity shift that keeps the total momentum zero, computed over the whole
   // group by momentum_shift(); null: over the particles of ed, which then must be all of them)
-  void apply(granfric::EventDriven &ed, const std::vector<double> &tag,
+  void apply(granfric::EventDriven &ed, const std::vector<tagint> &tag,
              const std::vector<int> &mask, long k, int dim,
              const granfric::Vec3 *dvcm = nullptr) const;
   // the shift of kick k over the group's atoms on all ranks (collective)

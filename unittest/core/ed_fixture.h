@@ -112,7 +112,7 @@ struct CoreRun {
     ed.resize((int) ref.p.size());
     for (size_t i = 0; i < ref.p.size(); i++) {
       const RefParticle &r = ref.p[i];
-      EDParticle &p = ed.particle((int) i);
+      auto p = ed.particle((int) i);
       p.x = r.x;
       p.v = r.v;
       p.w = r.w;

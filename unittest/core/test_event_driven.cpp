@@ -211,7 +211,7 @@ TEST(EventDriven, ChangesBetweenWindowsEqualReference)
         for (int e = 0; e < ed.size(); e++) {
           const bool k = kicked(e, w), out = (e + 2 * w) % 11 == 0;
           if (!k && !out) continue;
-          EDParticle &p = ed.particle(e);
+          auto p = ed.particle(e);
           const Vec3 x = ed.position(e, 0.0), v = ed.velocity(e, 0.0);
           if (out) ed.remove(e);
           EXPECT_EQ(ed.present(e), !out);
@@ -266,7 +266,7 @@ TEST(EventDriven, EmptySlotsFilledAndEmptiedEqualFreshStart)
     }
     int filled = 0;
     for (int e = n0; e < s.n; e++) {
-      EDParticle &p = ed.particle(e);
+      auto p = ed.particle(e);
       const RefParticle &r = ref.p[e];
       bool clear = true;
       for (int j = 0; j < s.n && clear; j++) {
@@ -290,7 +290,7 @@ TEST(EventDriven, EmptySlotsFilledAndEmptiedEqualFreshStart)
       if (present[e]) which.push_back(e);
     fresh.resize((int) which.size());
     for (size_t k = 0; k < which.size(); k++) {
-      EDParticle &p = fresh.particle((int) k);
+      auto p = fresh.particle((int) k);
       p = ed.particle(which[k]);
       p.x = ed.position(which[k], 0.0);
       p.v = ed.velocity(which[k], 0.0);
@@ -495,7 +495,7 @@ TEST(EventDriven, ThermalWallEquilibratesTheGas)
       if (w < 200) continue;
       double etr = 0, erot = 0;
       for (int i = 0; i < run.ed.size(); i++) {
-        const EDParticle &p = run.ed.particle(i);
+        const auto p = run.ed.particle(i);
         const Vec3 v = run.ed.velocity(i, 0.0);
         etr += 0.5 * p.m * norm2(v);
         erot += 0.5 * p.q * p.m * p.a * p.a * norm2(p.w);
@@ -522,7 +522,7 @@ TEST(EventDriven, ElasticSmoothGasConservesEnergy)
   auto energy = [](const EventDriven &ed) {
     double e = 0;
     for (int i = 0; i < ed.size(); i++) {
-      const EDParticle &p = ed.particle(i);
+      const auto p = ed.particle(i);
       e += 0.5 * p.m * norm2(p.v) + 0.5 * p.q * p.m * p.a * p.a * norm2(p.w);
     }
     return e;
@@ -559,10 +559,10 @@ TEST(EventDriven, MomentumConservedNoOverlapNoLoss)
         const EventDriven &ed = run.ed;
         double worst = 0;
         for (int i = 0; i < ed.size(); i++) {
-          const EDParticle &pi = ed.particle(i);
+          const auto pi = ed.particle(i);
           ASSERT_TRUE(std::isfinite(pi.x.x + pi.x.y + pi.x.z));
           for (int j = i + 1; j < ed.size(); j++) {
-            const EDParticle &pj = ed.particle(j);
+            const auto pj = ed.particle(j);
             const double d = norm(ref.min_image(pi.x - pj.x));
             worst = std::max(worst, (pi.a + pj.a - d) / (pi.a + pj.a));
           }

@@ -185,6 +185,32 @@ TEST(FixHardsphereED, RestartContinuesTheTrajectory)
       << "the kick counter is kept in the restart file (kicks at t = 0, 1/3, ..., 11/3)";
 }
 
+// Without the TC model the fix keeps no last-collision times (8 bytes per atom less, and as
+// many in the core); a restart file written then holds none, so a fix with tc that reads it
+// starts with no previous collisions, as a fix defined afresh does.
+TEST(FixHardsphereED, LastCollisionTimesOnlyWithTC)
+{
+  const std::string setup = gas(2, 150, 22.0, 5) +
+      "pair_style hardsphere/rough\npair_coeff * * 0.7 0.3\ntimestep 0.1\nthermo 0\n";
+  const std::string rst = "granfric_test_tc_" + std::to_string(::getpid()) + ".restart";
+  auto a = make_lammps();
+  run(a.get(), setup + "fix ed all hardsphere/ed\nrun 20 post no");
+  const double mem0 = a->modify->get_fix_by_id("ed")->memory_usage();
+  run(a.get(), "write_restart " + rst + "\nunfix ed\nfix ed all hardsphere/ed tc 0.5\nrun 20 post no");
+  const double mem1 = a->modify->get_fix_by_id("ed")->memory_usage();
+  EXPECT_GE(mem1 - mem0, 16.0 * a->atom->nlocal) << "tc keeps a time per atom in the fix and in the core";
+  EXPECT_GT(a->modify->get_fix_by_id("ed")->compute_vector(6), 0.0)
+      << "the TC model made collisions elastic (else this test shows nothing)";
+  Reference ra = reference_of(a.get());
+  a.reset();
+  auto b = make_lammps();
+  run(b.get(), "read_restart " + rst + "\ncomm_modify vel yes\nfix ed all hardsphere/ed tc 0.5\n"
+               "timestep 0.1\nthermo 0\nrun 20 post no");
+  std::remove(rst.c_str());
+  EXPECT_LT(max_deviation(b.get(), ra), 1e-9)
+      << "a restart without last-collision times: the TC model starts from none";
+}
+
 // Consecutive runs keep the event queue when nothing changed (no rebuild, the trajectory of
 // one long run), and rebuild it when the configuration did (new pair coefficients).
 TEST(FixHardsphereED, QueueKeptAcrossRunsUnlessConfigurationChanges)

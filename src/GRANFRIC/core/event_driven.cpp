@@ -30,7 +30,11 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   if (o.dim != 2 && o.dim != 3) throw std::invalid_argument("dimension must be 2 or 3");
   if ((int) table.size() != (nt + 1) * (nt + 1))
     throw std::invalid_argument("law table must have (ntypes+1)^2 entries");
+  if (nt > 32767) throw std::invalid_argument("at most 32767 particle types");
   opt = o;
+  // the last collision times exist only with the TC model
+  if (o.tc > 0.0 && TL.size() != H.size()) TL.assign(H.size(), -INF);
+  if (!(o.tc > 0.0)) TL.clear();
   has_gravity = norm2(o.gravity) != 0.0;
   ntypes = nt;
   laws = table;
@@ -87,7 +91,7 @@ bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<La
 
 void EventDriven::advance(int i, double t)
 {
-  EDParticle &p = P[i];
+  Hot &p = H[i];
   if (p.t == t) return;
   const double dt = t - p.t;
   if (has_gravity) {
@@ -110,7 +114,9 @@ void EventDriven::resize(int n)
 {
   paths.clear();
   acct = EDAccounting();
-  P.assign(n, EDParticle());
+  H.assign(n, Hot());
+  C.assign(n, Cold());
+  TL.assign(opt.tc > 0.0 ? n : 0, -INF);
   S.assign(n, Sched());
   WT.clear();
   img.assign(n, Image{{0, 0, 0}});
@@ -136,7 +142,7 @@ void EventDriven::reorder()
 // particles by cell (stable: by index within a cell)
 std::vector<int> EventDriven::cell_order() const
 {
-  const int n = (int) P.size();
+  const int n = (int) H.size();
   const int ncell = (int) head.size();
   // (empty slots after every cell)
   auto bin = [&](int i) { return S[i].gone ? ncell : cell_of(i); };
@@ -151,21 +157,23 @@ std::vector<int> EventDriven::cell_order() const
 // cell lists follow (the queue is the caller's)
 void EventDriven::renumber(const std::vector<int> &order)
 {
-  const int n = (int) P.size();
+  const int n = (int) H.size();
   std::vector<int> newloc(n);
   for (int k = 0; k < n; k++) newloc[order[k]] = k;
   {
-    big_vector<EDParticle> Q(n);
+    big_vector<Hot> Q(n);
+    big_vector<Cold> K(n);
     big_vector<Sched> T(n);
     big_vector<Image> M(n);
     big_vector<int> newext(n);
     for (int k = 0; k < n; k++) {
       const int o = order[k];
-      Q[k] = P[o];
+      Q[k] = H[o];
+      K[k] = C[o];
       T[k] = S[o];
       M[k] = img[o];
       if (T[k].cpartner >= 0) T[k].cpartner = newloc[T[k].cpartner];
-      if (Q[k].last_partner >= 0) Q[k].last_partner = newloc[Q[k].last_partner];
+      if (K[k].last_partner >= 0) K[k].last_partner = newloc[K[k].last_partner];
       newext[k] = ext[o];
     }
     if (!WT.empty()) {
@@ -173,7 +181,13 @@ void EventDriven::renumber(const std::vector<int> &order)
       for (int k = 0; k < n; k++) W[k] = WT[order[k]];
       WT.swap(W);
     }
-    P.swap(Q);
+    if (!TL.empty()) {
+      big_vector<double> W(n);
+      for (int k = 0; k < n; k++) W[k] = TL[order[k]];
+      TL.swap(W);
+    }
+    H.swap(Q);
+    C.swap(K);
     S.swap(T);
     img.swap(M);
     ext.swap(newext);
@@ -190,8 +204,8 @@ void EventDriven::renumber(const std::vector<int> &order)
 void EventDriven::setup_cells()
 {
   double amax = 0.0;
-  for (size_t i = 0; i < P.size(); i++)
-    if (!S[i].gone) amax = std::max(amax, P[i].a);
+  for (size_t i = 0; i < H.size(); i++)
+    if (!S[i].gone) amax = std::max(amax, H[i].a);
   const double sigma = 2.0 * amax * (1.0 + 1e-10);
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -209,7 +223,7 @@ void EventDriven::setup_cells()
     cw[d] = L[d] / nc[d];
   }
   // bound the number of cells by the number of particles (beyond that cells only cost memory)
-  const long maxcells = std::max<long>(27, 4L * (long) P.size());
+  const long maxcells = std::max<long>(27, 4L * (long) H.size());
   while ((long) nc[0] * nc[1] * nc[2] > maxcells) {
     int d = 0;
     for (int k = 1; k < opt.dim; k++)
@@ -218,9 +232,9 @@ void EventDriven::setup_cells()
     cw[d] = L[d] / nc[d];
   }
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
-  next.assign(P.size(), -1);
+  next.assign(H.size(), -1);
   cell_amax = amax;
-  for (size_t i = 0; i < P.size(); i++) {
+  for (size_t i = 0; i < H.size(); i++) {
     if (S[i].gone) continue;
     place((int) i);
     cell_insert((int) i);
@@ -229,7 +243,7 @@ void EventDriven::setup_cells()
 
 void EventDriven::place(int i)
 {
-  const EDParticle &p = P[i];
+  const Hot &p = H[i];
   Sched &s = S[i];
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -355,21 +369,17 @@ void EventDriven::scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3
 template <int DIM, bool GRAV, bool FULL>
 void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
 {
-  const EDParticle &p = P[i];
+  const Hot *HH = H.data();
+  const double pa = HH[i].a;
   Sched &s = S[i];
   const int *pk = img[i].k;
   const Vec3 g = opt.gravity;
   // one candidate j in the cell at image shift (kx, ky, kz) from i's
   auto test = [&](int j, int kx, int ky, int kz) __attribute__((always_inline)) {
-    const EDParticle &q = P[j];
+    const Hot &q = HH[j];
     const int *qk = img[j].k;
     const int o0 = pk[0] + kx - qk[0], o1 = pk[1] + ky - qk[1];
     const int o2 = DIM == 3 ? pk[2] + kz - qk[2] : 0;
-    // two particles whose last collisions were with each other (same periodic image)
-    // separate in free flight: relative motion is a straight line
-    if (p.last_partner == j && q.last_partner == i && o0 == s.last_off[0] && o1 == s.last_off[1] &&
-        o2 == s.last_off[2])
-      return;
     const double dtj = now - q.t;
     double x0 = q.x.x + dtj * q.v.x, x1 = q.x.y + dtj * q.v.y;
     double x2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
@@ -391,11 +401,18 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
       }
     }
     const double t = now + pair_contact_time<DIM>(xi.x - x0, xi.y - x1, xi.z - x2, vi.x - v0,
-                                                  vi.y - v1, DIM == 3 ? vi.z - v2 : 0.0, p.a + q.a);
+                                                  vi.y - v1, DIM == 3 ? vi.z - v2 : 0.0, pa + q.a);
     if (t < s.ct) {
+      // two particles whose last collisions were with each other (same periodic image)
+      // separate in free flight: relative motion is a straight line, they are no candidates
+      // (tested only here, for a would-be candidate: the same outcome as skipping them)
+      const Cold *CC = C.data();
+      if (CC[i].last_partner == j && CC[j].last_partner == i && o0 == s.last_off[0] &&
+          o1 == s.last_off[1] && o2 == s.last_off[2])
+        return;
       s.ct = t;
       s.cpartner = j;
-      s.ccount = q.ncoll;
+      s.ccount = CC[j].ncoll;
       s.coff[0] = o0;
       s.coff[1] = o1;
       s.coff[2] = o2;
@@ -457,11 +474,11 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
   long count = 0;
   depth = 0.0;
   key_i = key_j = -1;
-  const int n = (int) P.size();
+  const int n = (int) H.size();
   const int reach[3] = {1, opt.dim > 1 ? 1 : 0, opt.dim > 2 ? 1 : 0};
   for (int i = 0; i < n; i++) {
     if (S[i].gone) continue;
-    const EDParticle &p = P[i];
+    const Hot &p = H[i];
     const Vec3 xi = pos(i, now);
     for (int dz = -reach[2]; dz <= reach[2]; dz++)
       for (int dy = -reach[1]; dy <= reach[1]; dy++)
@@ -482,7 +499,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
           const int cell = (u[2] * nc[1] + u[1]) * nc[0] + u[0];
           for (int j = head[cell]; j >= 0; j = next[j]) {
             if (j == i) continue;
-            const EDParticle &q = P[j];
+            const Hot &q = H[j];
             const long ki = key(i), kj = key(j);
             if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
             if (!counted(ki <= kj ? i : j)) continue;
@@ -511,7 +528,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
 // particle scans its neighbourhood itself, as predict() does.
 void EventDriven::predict_all()
 {
-  const int n = (int) P.size();
+  const int n = (int) H.size();
   bool half = true;
   for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
   for (int i = 0; i < n; i++) {
@@ -525,7 +542,7 @@ void EventDriven::predict_all()
   // j seen from i at the image shift off (j's position + off * L); every particle is at time
   // now (its x and v are current)
   auto pair = [&](int i, int j, int o0, int o1, int o2) __attribute__((always_inline)) {
-    const EDParticle &p = P[i], &q = P[j];
+    const Hot &p = H[i], &q = H[j];
     Vec3 xj = q.x;
     if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
     const double t = now + pair_contact_time(p.x - xj, p.v - q.v, p.a + q.a);
@@ -533,13 +550,13 @@ void EventDriven::predict_all()
     if (t < si.ct) {
       si.ct = t;
       si.cpartner = j;
-      si.ccount = q.ncoll;
+      si.ccount = C[j].ncoll;
       si.coff[0] = o0, si.coff[1] = o1, si.coff[2] = o2;
     }
     if (t < sj.ct) {
       sj.ct = t;
       sj.cpartner = i;
-      sj.ccount = p.ncoll;
+      sj.ccount = C[i].ncoll;
       sj.coff[0] = -o0, sj.coff[1] = -o1, sj.coff[2] = -o2;
     }
   };
@@ -747,7 +764,7 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
 void EventDriven::predict_walls(int i, const Vec3 &xi, const Vec3 &vi)
 {
   Sched &p = S[i];
-  const double a = P[i].a;
+  const double a = H[i].a;
   for (int k = 0; k < (int) opt.walls.size(); k++) {
     const EDWall &w = opt.walls[k];
     const int d = w.dim;
@@ -777,7 +794,7 @@ static inline uint64_t mix64(uint64_t z)
 
 Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t)
 {
-  const EDParticle &p = P[i];
+  const EDParticleView p = view(i);
   uint64_t tbits;
   std::memcpy(&tbits, &t, sizeof(tbits));
   uint64_t key = mix64(mix64(w.seed) ^ (uint64_t) this->key(i)) ^ tbits;
@@ -806,18 +823,19 @@ Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n,
 
 void EventDriven::collide_wall(int i)
 {
-  EDParticle &p = P[i];
+  Hot &h = H[i];
+  Cold &p = C[i];
   Sched &s = S[i];
   const double t = WT[i];
   advance(i, t);
   const EDWall &w = opt.walls[s.wall];
   Vec3 n;
   n[w.dim] = w.side < 0 ? 1.0 : -1.0;
-  LawParams law = w.laws[p.type];
-  const double since = t - p.t_last;
+  LawParams law = w.laws[s.type];
+  const double since = t - t_last(i);
   const bool tc_elastic = opt.tc > 0.0 && since >= 0.0 && since < opt.tc;
   if (tc_elastic) law = law.elastic();
-  Body b{p.v, p.w, p.m, p.a, p.q};
+  Body b{h.v, p.w, p.m, h.a, p.q};
   Collision c;    // (its dE is set below for moving walls)
   if (w.T >= 0.0) {
     c = thermal_reemission(w, i, n, t);
@@ -830,16 +848,16 @@ void EventDriven::collide_wall(int i)
   }
   // kinetic energy change in the lab frame: a moving wall does work on the particle, so this is
   // not the law's dissipation (equal to it for a wall at rest)
-  const double dE = 0.5 * p.m * (norm2(c.v1) - norm2(p.v)) +
-      0.5 * p.q * p.m * p.a * p.a * (norm2(c.w1) - norm2(p.w));
+  const double dE = 0.5 * p.m * (norm2(c.v1) - norm2(h.v)) +
+      0.5 * p.q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
   c.dE = w.vibrating() ? dE : c.dE;
-  p.v = c.v1;
+  h.v = c.v1;
   p.w = c.w1;
-  p.t_last = t;
-  if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
+  if (!TL.empty()) TL[i] = t;
+  if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(h.v));
   p.ncoll++;
   p.last_partner = -1;
-  if (history) history->push_back({t, ext[i], -1 - s.wall, p.v, p.w, Vec3(), Vec3()});
+  if (history) history->push_back({t, ext[i], -1 - s.wall, h.v, p.w, Vec3(), Vec3()});
   const long ni = ++s.ncollisions;
   if (counted(i)) {
     stats.wall_collisions++;
@@ -876,32 +894,36 @@ void EventDriven::predict(int i, bool pairs)
 
 void EventDriven::collide_pair(int i)
 {
-  EDParticle &p = P[i];
+  Hot &hp = H[i];
+  Cold &p = C[i];
   Sched &s = S[i];
   const int j = s.cpartner;
-  EDParticle &q = P[j];
+  Hot &hq = H[j];
+  Cold &q = C[j];
   const double t = s.ct;
   advance(i, t);
   advance(j, t);
-  const Vec3 r = p.x - q.x - Vec3(s.coff[0] * L.x, s.coff[1] * L.y, s.coff[2] * L.z);
+  const Vec3 r = hp.x - hq.x - Vec3(s.coff[0] * L.x, s.coff[1] * L.y, s.coff[2] * L.z);
   const Vec3 n = (1.0 / norm(r)) * r;
 
-  LawParams law = laws[p.type * (ntypes + 1) + q.type];
-  // (a last collision 'in the future' after a clock reset does not count)
-  const double since_p = t - p.t_last, since_q = t - q.t_last;
-  const bool tc_elastic =
-      opt.tc > 0.0 && ((since_p >= 0.0 && since_p < opt.tc) || (since_q >= 0.0 && since_q < opt.tc));
+  LawParams law = laws[s.type * (ntypes + 1) + S[j].type];
+  bool tc_elastic = false;
+  if (!TL.empty()) {
+    // (a last collision 'in the future' after a clock reset does not count)
+    const double since_p = t - TL[i], since_q = t - TL[j];
+    tc_elastic = (since_p >= 0.0 && since_p < opt.tc) || (since_q >= 0.0 && since_q < opt.tc);
+    TL[i] = TL[j] = t;
+  }
   if (tc_elastic) law = law.elastic();
-  Body b1{p.v, p.w, p.m, p.a, p.q}, b2{q.v, q.w, q.m, q.a, q.q};
+  Body b1{hp.v, p.w, p.m, hp.a, p.q}, b2{hq.v, q.w, q.m, hq.a, q.q};
   const Collision c = collide(law, b1, b2, n);
-  p.v = c.v1;
+  hp.v = c.v1;
   p.w = c.w1;
-  q.v = c.v2;
+  hq.v = c.v2;
   q.w = c.w2;
-  p.t_last = q.t_last = t;
   if (!paths.empty()) {
-    paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
-    paths[ext[j]] = std::max(paths[ext[j]], norm2(q.v));
+    paths[ext[i]] = std::max(paths[ext[i]], norm2(hp.v));
+    paths[ext[j]] = std::max(paths[ext[j]], norm2(hq.v));
   }
   p.ncoll++;
   q.ncoll++;
@@ -912,7 +934,7 @@ void EventDriven::collide_pair(int i)
     S[j].last_off[d] = -s.coff[d];
   }
   const bool book = counted(key(i) <= key(j) ? i : j);
-  if (history) history->push_back({t, ext[i], ext[j], p.v, p.w, q.v, q.w});
+  if (history) history->push_back({t, ext[i], ext[j], hp.v, p.w, hq.v, q.w});
   const long ni = ++s.ncollisions, nj = ++S[j].ncollisions;
   if (counted(i)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
   if (counted(j)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, nj);
@@ -944,7 +966,7 @@ void EventDriven::collide_pair(int i)
 
 void EventDriven::cross(int i)
 {
-  EDParticle &q = P[i];
+  const Hot &q = H[i];
   Sched &p = S[i];
   const int d = p.xdim, dir = p.xdir;
   advance(i, p.xt);
@@ -962,7 +984,7 @@ void EventDriven::cross(int i)
   crossings_since_reorder++;
   const Vec3 xi = q.x, vi = q.v;    // advanced to now above
   predict_crossing(i, xi, vi);
-  if (p.ct < NEVER && P[p.cpartner].ncoll != p.ccount) {
+  if (p.ct < NEVER && C[p.cpartner].ncoll != p.ccount) {
     // the stored collision candidate went stale: look at every neighbouring cell
     p.ct = NEVER;
     p.cpartner = -1;
@@ -981,16 +1003,16 @@ void EventDriven::cross(int i)
 void EventDriven::start()
 {
   now = 0.0;
-  const int n = (int) P.size();
+  const int n = (int) H.size();
   for (auto &s : S) s.ncollisions = 0;
   WT.assign(opt.walls.empty() ? 0 : n, NEVER);
-  for (auto &p : P) {
-    p.t = 0.0;
-    p.ncoll = 0;
-    p.last_partner = -1;
+  for (int i = 0; i < n; i++) {
+    H[i].t = 0.0;
+    C[i].ncoll = 0;
+    C[i].last_partner = -1;
     if (opt.dim == 2) {
-      p.v.z = 0.0;
-      p.w.x = p.w.y = 0.0;
+      H[i].v.z = 0.0;
+      C[i].w.x = C[i].w.y = 0.0;
     }
   }
   setup_cells();
@@ -1015,14 +1037,15 @@ void EventDriven::remove(int e)
   s.gone = 1;
   no_events(i);
   s.ekind = NONE;
-  P[i].ncoll++;    // predictions that involved it are stale
-  P[i].last_partner = -1;
+  C[i].ncoll++;    // predictions that involved it are stale
+  C[i].last_partner = -1;
 }
 
 void EventDriven::changed(int e)
 {
   const int i = loc[e];
-  EDParticle &p = P[i];
+  Hot &p = H[i];
+  Cold &c = C[i];
   Sched &s = S[i];
   if (!started) throw std::logic_error("EventDriven::changed() before start()");
   if (!(p.a <= cell_amax))
@@ -1030,11 +1053,11 @@ void EventDriven::changed(int e)
   if (!s.gone) cell_remove(i);
   s.gone = 0;
   p.t = now;
-  p.ncoll++;    // every prediction that involved it is stale
-  p.last_partner = -1;
+  c.ncoll++;    // every prediction that involved it is stale
+  c.last_partner = -1;
   if (opt.dim == 2) {
     p.v.z = 0.0;
-    p.w.x = p.w.y = 0.0;
+    c.w.x = c.w.y = 0.0;
   }
   place(i);
   cell_insert(i);
@@ -1059,7 +1082,7 @@ EDStats EventDriven::advance_to(double t_end)
   stats = EDStats();
   stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
   for (auto &s : S) s.ncollisions = 0;
-  const int n = (int) P.size();
+  const int n = (int) H.size();
   refresh();
   if (crossings_since_reorder > 4L * n) reorder();
   size_t g = 0;
@@ -1074,7 +1097,7 @@ EDStats EventDriven::advance_to(double t_end)
     if (!(et < t_end)) break;
     now = et;
     if (p.ekind == COLLISION) {
-      if (P[p.cpartner].ncoll != p.ccount) {
+      if (C[p.cpartner].ncoll != p.ccount) {
         predict(i);    // the partner changed course: stale prediction
         reschedule(i);
       } else {
@@ -1102,12 +1125,12 @@ void EventDriven::set_global_events(const std::vector<double> &times, std::funct
 void EventDriven::global_event(int k)
 {
   now = gtimes[k];
-  const int n = (int) P.size();
+  const int n = (int) H.size();
   auto energy = [&]() {
     double e = 0.0;
     for (int i = 0; i < n; i++) {
-      const EDParticle &p = P[i];
-      if (counted(i)) e += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
+      const Cold &p = C[i];
+      if (counted(i)) e += 0.5 * p.m * (norm2(H[i].v) + p.q * H[i].a * H[i].a * norm2(p.w));
     }
     return e;
   };
@@ -1117,14 +1140,15 @@ void EventDriven::global_event(int k)
   stats.injected += energy() - before;
   stats.global_events++;
   for (int i = 0; i < n; i++) {
-    EDParticle &p = P[i];
+    Hot &h = H[i];
+    Cold &p = C[i];
     p.ncoll++;    // every trajectory changed: all stored predictions are stale
     p.last_partner = -1;
     if (opt.dim == 2) {
-      p.v.z = 0.0;
+      h.v.z = 0.0;
       p.w.x = p.w.y = 0.0;
     }
-    if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(p.v));
+    if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(h.v));
   }
   predict_all();
   std::vector<double> times(n);
@@ -1135,10 +1159,8 @@ void EventDriven::global_event(int k)
 void EventDriven::rebase(double dt)
 {
   // the same shift for every time keeps the heap ordered (rounding is monotone)
-  for (auto &p : P) {
-    p.t -= dt;
-    p.t_last -= dt;
-  }
+  for (auto &p : H) p.t -= dt;
+  for (auto &t : TL) t -= dt;
   for (auto &s : S) {
     s.ct -= dt;
     s.xt -= dt;
@@ -1153,7 +1175,7 @@ EDStats EventDriven::run(double t_end)
 {
   start();
   const EDStats s = advance_to(t_end);
-  for (int i = 0; i < (int) P.size(); i++) advance(i, t_end);
+  for (int i = 0; i < (int) H.size(); i++) advance(i, t_end);
   return s;
 }
 

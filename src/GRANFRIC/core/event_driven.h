@@ -20,24 +20,43 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace granfric {
 
-// A particle as the user sets and reads it (x, v, w, a, m, q, type, t_last), plus the two words
-// of internal state that every candidate-partner test reads. 128 bytes: the first cache line holds
-// what a pair prediction needs (x, v, t, a), the second the rest.
-struct alignas(64) EDParticle {
-  Vec3 x, v;                  // position (unwrapped), velocity
-  double t = 0.0;             // local time of x and v (internal)
-  double a = 0.5;             // radius
-  Vec3 w;                     // angular velocity
-  double m = 1.0, q = 0.4;    // mass, moment of inertia / (m a^2)
-  double t_last = -INF;       // time of the last collision (window time), for the TC model
-  int type = 1;
-  uint32_t ncoll = 0;         // collisions since start(): invalidates partners' predictions
-  int last_partner = -1;      // partner of the last collision (internal)
+// A particle as the user sets and reads it: references into the core's storage (x, v, t, a
+// are kept in one 64-byte record that every candidate-partner test reads, w, m, q apart, type
+// with the particle's schedule). Assigning one EDParticle to another copies the values.
+// t_last (the time of the last collision, for the TC model) is kept only while tc > 0: without
+// the TC model it plays no part, reads -inf, and what is written to it is dropped.
+template <bool CONST>
+struct EDParticleT {
+  template <class T>
+  using R = std::conditional_t<CONST, const T &, T &>;
+  R<Vec3> x, v;          // position (unwrapped), velocity
+  R<double> t, a;        // local time of x and v (internal), radius
+  R<Vec3> w;             // angular velocity
+  R<double> m, q;        // mass, moment of inertia / (m a^2)
+  R<double> t_last;      // time of the last collision (window time), for the TC model
+  R<int16_t> type;       // 1 .. ntypes
+  template <bool C>
+  EDParticleT &operator=(const EDParticleT<C> &o)
+  {
+    static_assert(!CONST, "a const particle cannot be assigned");
+    x = o.x, v = o.v, t = o.t, a = o.a, w = o.w, m = o.m, q = o.q, t_last = o.t_last, type = o.type;
+    return *this;
+  }
+  EDParticleT &operator=(const EDParticleT &o) { return operator=<CONST>(o); }
+  EDParticleT(const EDParticleT &) = default;
+  EDParticleT(R<Vec3> x_, R<Vec3> v_, R<double> t_, R<double> a_, R<Vec3> w_, R<double> m_,
+              R<double> q_, R<double> tl_, R<int16_t> ty_) :
+      x(x_), v(v_), t(t_), a(a_), w(w_), m(m_), q(q_), t_last(tl_), type(ty_)
+  {
+  }
 };
+using EDParticle = EDParticleT<false>;
+using EDParticleView = EDParticleT<true>;
 
 // A static plane wall normal to dimension dim at position pos: side -1 bounds the particles
 // from below (they live at x[dim] > pos, the wall normal is +e_dim), side +1 from above. The
@@ -132,9 +151,9 @@ class EventDriven {
   // particles by external index 0..n-1 (the order they were given in); internally they are
   // kept in cell order for memory locality
   void resize(int n);
-  int size() const { return (int) P.size(); }
-  EDParticle &particle(int e) { return P[loc[e]]; }
-  const EDParticle &particle(int e) const { return P[loc[e]]; }
+  int size() const { return (int) H.size(); }
+  EDParticle particle(int e) { return ref(loc[e]); }
+  EDParticleView particle(int e) const { return view(loc[e]); }
 
   // process every event in [0, t_end) and advance all particles to t_end
   EDStats run(double t_end);
@@ -180,12 +199,12 @@ class EventDriven {
   void record_events(std::vector<EDEvent> *h) { history = h; }
   void track_paths(bool on)
   {
-    paths.assign(on ? P.size() : 0, 0.0);
+    paths.assign(on ? H.size() : 0, 0.0);
     for (size_t e = 0; e < paths.size(); e++) paths[e] = norm2(vel(loc[e], now));
   }
   double path(int e, double t) const;
   // the squared speed path() starts from (its largest since track_paths())
-  double path_speed2(int e) const { return paths.empty() ? norm2(P[loc[e]].v) : paths[e]; }
+  double path_speed2(int e) const { return paths.empty() ? norm2(H[loc[e]].v) : paths[e]; }
   void set_accounting(const EDAccounting &a) { acct = a; }
 
   // Pairs that overlap by more than tol times their contact distance at the current time
@@ -198,7 +217,8 @@ class EventDriven {
   // bytes held (particles, index maps, cells, queue, optional records)
   size_t memory_bytes() const
   {
-    return P.capacity() * sizeof(EDParticle) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
+    return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) +
+        TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
         (head.capacity() + next.capacity()) * sizeof(int) + queue.memory_bytes() +
         paths.capacity() * sizeof(double) + acct.key.capacity() * sizeof(long) +
@@ -214,14 +234,48 @@ class EventDriven {
   Vec3 velocity(int e, double t) const { return vel(loc[e], t); }
 
  private:
-  big_vector<EDParticle> P;             // internal order
+  // the particles in internal order: what every candidate-partner test reads (one cache line),
+  // and what only a collision reads
+  struct alignas(64) Hot {
+    Vec3 x, v;                // position (unwrapped), velocity
+    double t = 0.0;           // local time of x and v
+    double a = 0.5;           // radius
+  };
+  static_assert(sizeof(Hot) == 64, "what a pair prediction reads fills one cache line");
+  struct Cold {
+    Vec3 w;                   // angular velocity
+    double m = 1.0, q = 0.4;  // mass, moment of inertia / (m a^2)
+    uint32_t ncoll = 0;       // collisions since start(): invalidates partners' predictions
+    int last_partner = -1;    // partner of the last collision
+  };
+  static_assert(sizeof(Cold) == 48, "w, m, q and the collision counters: 48 bytes");
+  big_vector<Hot> H;
+  big_vector<Cold> C;
+  big_vector<double> TL;                 // time of the last collision (only with tc > 0)
+  mutable double tl_none = -INF;         // what t_last refers to without the TC model
+  EDParticle ref(int i)
+  {
+    Hot &h = H[i];
+    Cold &c = C[i];
+    double &tl = TL.empty() ? (tl_none = -INF) : TL[i];
+    return EDParticle(h.x, h.v, h.t, h.a, c.w, c.m, c.q, tl, S[i].type);
+  }
+  EDParticleView view(int i) const
+  {
+    const Hot &h = H[i];
+    const Cold &c = C[i];
+    const double &tl = TL.empty() ? (tl_none = -INF) : TL[i];
+    return EDParticleView(h.x, h.v, h.t, h.a, c.w, c.m, c.q, tl, S[i].type);
+  }
+  double t_last(int i) const { return TL.empty() ? -INF : TL[i]; }
   // a particle's own event bookkeeping, read only when it is predicted or processed: one cache
   // line (the next wall collision, which only systems with walls have, is kept apart in WT)
   struct alignas(64) Sched {
     int16_t c[3] = {0, 0, 0}; // cell coordinates within the grid (at most 32767 cells a side)
+    int16_t type = 1;         // the particle's type (at most 32767 types)
     int8_t gone = 0;          // an empty slot (remove()): no cell, no event
     int8_t ekind = 0;         // scheduled event: NONE, COLLISION, CROSSING, WALL
-    int8_t xdim = 0, xdir = 0;    // crossing dimension and direction (+1 / -1)
+    int8_t xdim : 4, xdir : 4;    // crossing dimension and direction (+1 / -1)
     int8_t wall = -1;         // which wall
     int cpartner = -1;        // collision candidate: partner,
     uint32_t ccount = 0;      //   partner's ncoll at prediction (stale when it changed),
@@ -230,6 +284,7 @@ class EventDriven {
     int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
     double ct = NEVER;        //   and time
     double xt = NEVER;        // next cell crossing: time
+    Sched() : xdim(0), xdir(0) {}
   };
   static_assert(sizeof(Sched) == 64, "a particle's schedule fills one cache line");
   big_vector<Sched> S;
@@ -284,14 +339,14 @@ class EventDriven {
   // partner and by the LAMMPS fix for every atom and step)
   Vec3 pos(int i, double t) const
   {
-    const EDParticle &p = P[i];
+    const Hot &p = H[i];
     const double dt = t - p.t;
     if (!has_gravity) return p.x + dt * p.v;
     return p.x + dt * p.v + (0.5 * dt * dt) * opt.gravity;
   }
   Vec3 vel(int i, double t) const
   {
-    const EDParticle &p = P[i];
+    const Hot &p = H[i];
     return p.v + (t - p.t) * opt.gravity;
   }
   int cell_of(int i) const
