@@ -6,6 +6,10 @@ window) and the communication per window (doubles received per rank). Figures me
 run, not a test. Writes bench/results/mpi_scaling.csv and prints a markdown table.
 
     /usr/bin/python3 bench/mpi_scaling.py [--quick | --full] [--ranks 2]
+    /usr/bin/python3 bench/mpi_scaling.py --callgrind [--ranks 2]
+
+--callgrind: the efficiency from instruction counts instead (N = 99856), for the whole short
+run and for its steady state (see callgrind_table).
 """
 import argparse
 import csv
@@ -37,7 +41,7 @@ def run_callgrind(nside, phi, dtmft, ncoll, np_, work):
     if os.geteuid() == 0:
         cmd.append("--allow-run-as-root")
     cmd += ["valgrind", "--tool=callgrind", "--toggle-collect=*FixHardsphereED::initial_integrate*",
-            "--callgrind-out-file=" + os.path.join(work, "cg.out.%p"), paths["GRANFRIC_LMP"],
+            "--callgrind-out-file=" + os.path.join(work, "cg.out.%q{OMPI_COMM_WORLD_RANK}"), paths["GRANFRIC_LMP"],
             "-in", os.path.join(HERE, "in.speed"), "-log", "none", "-var", "dim", "2",
             "-var", "nside", str(nside), "-var", "phi", str(phi), "-var", "dtmft", str(dtmft),
             "-var", "ncoll", str(ncoll), "-var", "neq", "1"]
@@ -46,7 +50,7 @@ def run_callgrind(nside, phi, dtmft, ncoll, np_, work):
         raise RuntimeError(p.stderr[-2000:])
     b = re.search(r"BENCH dim 2 N (\d+) .* collisions (\d+)", p.stdout)
     ir = []
-    for path in sorted(glob.glob(os.path.join(work, "cg.out.*"))):
+    for path in sorted(glob.glob(os.path.join(work, "cg.out.*")), key=lambda f: f.rsplit(".", 1)[1]):
         ir.append(work_instructions(path))
     return int(b.group(1)), int(b.group(2)), ir
 
@@ -139,19 +143,28 @@ def main(argv=None):
 
 def callgrind_table(ranks, ncoll=10):
     """Instructions per collision on 1 and `ranks` ranks, N = 316^2, ncoll collisions per
-    particle timed (about ncoll / dt windows after one equilibration window)."""
+    particle timed (about ncoll / dt windows after one equilibration window). Each run also
+    pays once for its starts (the equilibration run's and the timed run's: cells, predictions,
+    the overlap check), which a long run spreads over many more collisions; the steady-state
+    columns take the difference of a run with 2 * ncoll and one with ncoll collisions per
+    particle, which cancels those one-off costs."""
     import tempfile
     work = tempfile.mkdtemp(prefix="granfric_cg_")
     print(f"| N | fraction | dt (mean free times) | instructions/collision 1 rank | busiest of {ranks} "
-          "ranks (MPI waiting excluded) | efficiency (instructions) |")
-    print("|---|---|---|---|---|---|")
+          "ranks (MPI waiting excluded) | efficiency (instructions) | steady state: 1 rank | "
+          f"busiest of {ranks} | steady-state efficiency |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for phi, dt in ((0.3, 1), (0.3, 2), (0.05, 1), (0.05, 2)):
-        if True:
-            N, c1, ir1 = run_callgrind(316, phi, dt, ncoll, 1, work)
-            _, c2, ir2 = run_callgrind(316, phi, dt, ncoll, ranks, work)
-            e1, e2 = sum(ir1) / c1, max(ir2) / c2
-            print(f"| {N} | {phi} | {dt} | {e1:.0f} | {e2:.0f} | {100 * e1 / (ranks * e2):.0f} % |",
-                  flush=True)
+        N, c1, ir1 = run_callgrind(316, phi, dt, ncoll, 1, work)
+        _, c2, ir2 = run_callgrind(316, phi, dt, ncoll, ranks, work)
+        _, d1, jr1 = run_callgrind(316, phi, dt, 2 * ncoll, 1, work)
+        _, d2, jr2 = run_callgrind(316, phi, dt, 2 * ncoll, ranks, work)
+        e1, e2 = sum(ir1) / c1, max(ir2) / c2
+        # per rank (files named by rank), the longer run less the shorter; the busiest rank
+        s1 = (sum(jr1) - sum(ir1)) / (d1 - c1)
+        s2 = max(b - a for a, b in zip(ir2, jr2)) / (d2 - c2)
+        print(f"| {N} | {phi} | {dt} | {e1:.0f} | {e2:.0f} | {100 * e1 / (ranks * e2):.0f} % | "
+              f"{s1:.0f} | {s2:.0f} | {100 * s1 / (ranks * s2):.1f} % |", flush=True)
 
 
 if __name__ == "__main__":
