@@ -651,6 +651,50 @@ TEST(EventDriven, TCModelEqualsReference)
   expect_same_state(ref, run, 1e-9);
 }
 
+// The last collision times (kept only with the TC model) follow every particle through the
+// core's renumbering in cell order and through the time shifts between windows: each equals the
+// time of the particle's last collision in the recorded histories. Without tc they read -inf.
+TEST(EventDriven, LastCollisionTimesFollowReorderAndRebase)
+{
+  for (double tc : {1e-6, 0.0}) {
+    Reference ref = make_system(spec_of(300, 2, 0.3, 17), LawParams::rough(0.9, 0.2));
+    ref.tc = tc;
+    const double dt = 0.5 * mean_free_time(ref);
+    CoreRun run(ref);
+    run.ed.start();
+    std::vector<EDEvent> h;
+    run.ed.record_events(&h);
+    std::vector<double> last(ref.p.size(), -INF);    // absolute times
+    const int nwin = 200;
+    for (int w = 0; w < nwin; w++) {
+      h.clear();
+      run.total.add(run.ed.advance_to(dt));
+      for (const EDEvent &e : h) {
+        last[e.i] = w * dt + e.t;
+        if (e.j >= 0) last[e.j] = w * dt + e.t;
+      }
+      run.ed.rebase(dt);
+    }
+    // the core renumbers its particles after 4 N cell crossings: several times here
+    ASSERT_GT(run.total.crossings, 16L * (long) ref.p.size());
+    long collided = 0;
+    for (int e = 0; e < run.ed.size(); e++) {
+      const double tl = run.ed.particle(e).t_last;
+      if (tc == 0.0) {
+        EXPECT_EQ(tl, -INF) << "no last collision times without the TC model";
+        continue;
+      }
+      if (last[e] == -INF) {
+        EXPECT_EQ(tl, -INF);
+        continue;
+      }
+      collided++;
+      EXPECT_NEAR(tl + nwin * dt, last[e], 1e-9) << "particle " << e;
+    }
+    if (tc > 0.0) EXPECT_GT(collided, 290);
+  }
+}
+
 TEST(Prediction, PairContactTime)
 {
   // head-on: distance 3 along x, closing at speed 2, contact at sigma = 1 after 1
