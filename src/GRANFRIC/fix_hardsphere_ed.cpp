@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -366,8 +367,9 @@ void FixHardsphereED::wrap_image(imageint &image, const int *dimg)
 void FixHardsphereED::written_state(int s, double t, double *w, const granfric::Vec3 *xs) const
 {
   (xs ? *xs : ed.position(s, t)).to(w);
-  const int *off = &offset[(size_t) s * noff];
-  for (int d = 0; d < noff; d++) w[d] -= off[d] * wper[d];    // (wper = 0: not periodic, off = 0)
+  const int n = noff;
+  const int *off = &offset[(size_t) s * n];
+  for (int d = 0; d < n; d++) w[d] -= off[d] * wper[d];    // (wper = 0: not periodic, off = 0)
   ed.velocity(s, t).to(w + 3);
   ed.particle(s).w.to(w + 6);
 }
@@ -470,7 +472,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
       (int) offset.size() == noff * ntotal;
   for (int s = 0; reuse && s < ntotal; s++) {
     const int k = order[s];
-    const auto p = ed.particle(s);
+    const auto p = std::as_const(ed).particle(s);    // (a read-only view)
     double w[9];
     written_state(s, prev_dt, w);
     // this window's x, v, omega of the atom (in place on one rank)
@@ -580,7 +582,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
       }
     }
     if (i < 0) return;
-    const auto p = ed.particle(s);
+    const auto p = std::as_const(ed).particle(s);
     double w[9];
     written_state(s, dt, w, &xs);
     shift_image(image[i], dimg);

@@ -34,6 +34,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 #include <unordered_map>
 
 using namespace LAMMPS_NS;
@@ -280,7 +281,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     // does slot sl hold, bit for bit, the state xa, va, wa, radius, mass, type (at window time 0)?
     auto holds = [&](int sl, const double *xa, const double *va, const double *wa, double ra,
                      double ma, int ta) {
-      const auto p = ed.particle(sl);
+      const auto p = std::as_const(ed).particle(sl);
       const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
       bool same = ra == p.a && ma == p.m && ta == p.type;
       for (int d = 0; d < 3 && same; d++) same = xa[d] == xs[d] && va[d] == vs[d] && wa[d] == p.w[d];
@@ -559,7 +560,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   for (int i = 0; i < nlocal; i++) {
     const int e = lslot[i];
-    const auto p = ed.particle(e);
+    const auto p = std::as_const(ed).particle(e);
     double xe[3];
     ed.position(e, dt).to(xe);
     int dimg[3] = {0, 0, 0};

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 using namespace LAMMPS_NS;
 
@@ -139,7 +140,7 @@ void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<tagin
     const long t = (long) tag[e];
     dv[e] = vdr * Vec3(gaussian(seed, t, k, 0), gaussian(seed, t, k, 1),
                        dim == 3 ? gaussian(seed, t, k, 2) : 0.0);
-    const auto p = ed.particle(e);
+    const auto p = std::as_const(ed).particle(e);
     P += p.m * dv[e];
     M += p.m;
   }

@@ -252,7 +252,8 @@ class EventDriven {
   big_vector<Hot> H;
   big_vector<Cold> C;
   big_vector<double> TL;                 // time of the last collision (only with tc > 0)
-  mutable double tl_none = -INF;         // what t_last refers to without the TC model
+  double tl_none = -INF;                 // what t_last refers to without the TC model
+  static constexpr double TL_NONE = -INF;    // (read-only views: no store to tl_none)
   EDParticle ref(int i)
   {
     Hot &h = H[i];
@@ -264,7 +265,7 @@ class EventDriven {
   {
     const Hot &h = H[i];
     const Cold &c = C[i];
-    const double &tl = TL.empty() ? (tl_none = -INF) : TL[i];
+    const double &tl = TL.empty() ? TL_NONE : TL[i];
     return EDParticleView(h.x, h.v, h.t, h.a, c.w, c.m, c.q, tl, S[i].type);
   }
   double t_last(int i) const { return TL.empty() ? -INF : TL[i]; }
