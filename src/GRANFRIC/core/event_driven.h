@@ -5,8 +5,8 @@
 // exact time order; then every particle is advanced to t_end. Candidate partners come from a
 // cell grid (cell width >= largest contact distance) kept exact by cell-crossing events, so no
 // pair can be missed whatever the window length. Per-particle local times and lazy updates, one
-// scheduled event per particle, invalidation by collision counters, an indexed 4-ary heap, and
-// the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
+// scheduled event per particle, invalidation by collision counters, a calendar queue
+// (event_queue.h), and the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
 // the window (periodic images are tracked by integer offsets, not by moving particles).
 #ifndef GRANFRIC_CORE_EVENT_DRIVEN_H
 #define GRANFRIC_CORE_EVENT_DRIVEN_H
@@ -248,7 +248,7 @@ class EventDriven {
     uint32_t ncoll = 0;       // collisions since start(): invalidates partners' predictions
     int last_partner = -1;    // partner of the last collision
   };
-  static_assert(sizeof(Cold) == 48, "w, m, q and the collision counters: 48 bytes");
+  static_assert(sizeof(Cold) == 48, "w, m, q, the collision counter and the last partner: 48 bytes");
   big_vector<Hot> H;
   big_vector<Cold> C;
   big_vector<double> TL;                 // time of the last collision (only with tc > 0)
@@ -268,7 +268,7 @@ class EventDriven {
     const double &tl = TL.empty() ? TL_NONE : TL[i];
     return EDParticleView(h.x, h.v, h.t, h.a, c.w, c.m, c.q, tl, S[i].type);
   }
-  double t_last(int i) const { return TL.empty() ? -INF : TL[i]; }
+  double t_last(int i) const { return TL.empty() ? TL_NONE : TL[i]; }
   // a particle's own event bookkeeping, read only when it is predicted or processed: one cache
   // line (the next wall collision, which only systems with walls have, is kept apart in WT)
   struct alignas(64) Sched {
