@@ -376,7 +376,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   const int n = ed.size();    // slots
   acct.key.assign(gtag.begin(), gtag.end());
   acct.counted.assign(sowned.begin(), sowned.end());
-  ed.set_accounting(acct);
+  ed.set_accounting(std::move(acct));
   history.clear();
   ed.record_events(&history);
   if (check_overlaps && keep) {

@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace granfric {
@@ -205,7 +206,7 @@ class EventDriven {
   double path(int e, double t) const;
   // the squared speed path() starts from (its largest since track_paths())
   double path_speed2(int e) const { return paths.empty() ? norm2(H[loc[e]].v) : paths[e]; }
-  void set_accounting(const EDAccounting &a) { acct = a; }
+  void set_accounting(EDAccounting a) { acct = std::move(a); }
 
   // Pairs that overlap by more than tol times their contact distance at the current time
   // (after start()), counted once (where the partner with the smaller key is counted); the
