@@ -138,47 +138,13 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   };
 
   // ------------------------------------------------ send the atoms others need
-  // (per other rank with atoms, the dimensions its region does not cover whole, each with the
-  // periodic shifts image_in() tries and its arithmetic: the same decision as inside(), without
-  // its per-atom loops over ranks, dimensions and images; a dimension that is not periodic
-  // tries the shift 0 three times)
-  struct Reach {
-    int nd = 0, d[3];
-    double lo[3], hi[3], sh[3][3];
-  };
-  std::vector<Reach> others;
-  for (int r = 0; r < nprocs; r++) {
-    if (r == me || !(bb[6 * r] <= bb[6 * r + 3])) continue;
-    Reach t;
-    for (int d = 0; d < 3; d++) {
-      if (reg[r].whole[d]) continue;
-      const int m = t.nd++;
-      t.d[m] = d;
-      t.lo[m] = reg[r].lo[d];
-      t.hi[m] = reg[r].hi[d];
-      const int ks[3] = {0, -1, 1};
-      for (int k = 0; k < 3; k++) t.sh[m][k] = domain->periodicity[d] ? ks[k] * domain->prd[d] : 0.0;
-    }
-    others.push_back(t);
-  }
-  auto needed = [&](const double *xi) {
-    for (const Reach &t : others) {
-      bool in = true;
-      for (int m = 0; m < t.nd; m++) {
-        const double x0 = xi[t.d[m]], lo = t.lo[m], hi = t.hi[m];
-        const double y0 = x0 + t.sh[m][0], y1 = x0 + t.sh[m][1], y2 = x0 + t.sh[m][2];
-        in &= ((y0 >= lo) & (y0 <= hi)) | ((y1 >= lo) & (y1 <= hi)) | ((y2 >= lo) & (y2 <= hi));
-      }
-      if (in) return true;
-    }
-    return false;
-  };
   std::vector<char> sent(nlocal, 0);
   dsend.clear();
   int s3[3];
   for (int i = 0; i < nlocal; i++) {
-    if (!needed(x[i])) continue;
-    sent[i] = 1;
+    for (int r = 0; r < nprocs && !sent[i]; r++)
+      if (r != me && bb[6 * r] <= bb[6 * r + 3] && inside(reg[r], x[i], s3)) sent[i] = 1;
+    if (!sent[i]) continue;
     const size_t o = dsend.size();
     dsend.resize(o + NPACK);
     pack_atom(i, t0, &dsend[o]);

@@ -832,8 +832,7 @@ void EventDriven::collide_wall(int i)
   Vec3 n;
   n[w.dim] = w.side < 0 ? 1.0 : -1.0;
   LawParams law = w.laws[s.type];
-  const double since = t - t_last(i);
-  const bool tc_elastic = opt.tc > 0.0 && since >= 0.0 && since < opt.tc;
+  const bool tc_elastic = tc_recent(i, t);
   if (tc_elastic) law = law.elastic();
   Body b{h.v, p.w, p.m, h.a, p.q};
   Collision c;    // (its dE is set below for moving walls)
@@ -907,13 +906,8 @@ void EventDriven::collide_pair(int i)
   const Vec3 n = (1.0 / norm(r)) * r;
 
   LawParams law = laws[s.type * (ntypes + 1) + S[j].type];
-  bool tc_elastic = false;
-  if (!TL.empty()) {
-    // (a last collision 'in the future' after a clock reset does not count)
-    const double since_p = t - TL[i], since_q = t - TL[j];
-    tc_elastic = (since_p >= 0.0 && since_p < opt.tc) || (since_q >= 0.0 && since_q < opt.tc);
-    TL[i] = TL[j] = t;
-  }
+  const bool tc_elastic = tc_recent(i, t) || tc_recent(j, t);
+  if (!TL.empty()) TL[i] = TL[j] = t;
   if (tc_elastic) law = law.elastic();
   Body b1{hp.v, p.w, p.m, hp.a, p.q}, b2{hq.v, q.w, q.m, hq.a, q.q};
   const Collision c = collide(law, b1, b2, n);

@@ -269,7 +269,14 @@ class EventDriven {
     const double &tl = TL.empty() ? TL_NONE : TL[i];
     return EDParticleView(h.x, h.v, h.t, h.a, c.w, c.m, c.q, tl, S[i].type);
   }
-  double t_last(int i) const { return TL.empty() ? TL_NONE : TL[i]; }
+  // the TC model: did i collide within tc before t? (only with tc > 0; a last collision 'in the
+  // future' after a clock reset does not count)
+  bool tc_recent(int i, double t) const
+  {
+    if (TL.empty()) return false;
+    const double since = t - TL[i];
+    return since >= 0.0 && since < opt.tc;
+  }
   // a particle's own event bookkeeping, read only when it is predicted or processed: one cache
   // line (the next wall collision, which only systems with walls have, is kept apart in WT)
   struct alignas(64) Sched {
