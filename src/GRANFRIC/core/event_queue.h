@@ -78,10 +78,10 @@ class EventQueue {
   // exactly (time, index) again, as after a rebuild, at a fraction of its cost.
   void shift(double dt)
   {
-    for (auto &q : node) q.key -= dt;
     origin -= dt;
     const int n = (int) node.size();
     for (int i = 0; i < n; i++) {
+      node[i].key -= dt;
       const int64_t b = bucket(node[i].key);
       const int s = node[i].where;
       const bool right = b == BEYOND ? s == OVER : b == cur ? s <= FRONT : s == (int) (b & (nb - 1));
