@@ -119,7 +119,7 @@ void EventDriven::resize(int n)
   TL.assign(opt.tc > 0.0 ? n : 0, -INF);
   S.assign(n, Sched());
   WT.clear();
-  img.assign(n, Image{{0, 0, 0}});
+  img.assign(n, Image{{0, 0, 0}, -1});
   ext.resize(n);
   loc.resize(n);
   for (int i = 0; i < n; i++) ext[i] = loc[i] = i;
@@ -232,7 +232,7 @@ void EventDriven::setup_cells()
     cw[d] = L[d] / nc[d];
   }
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
-  next.assign(H.size(), -1);
+  for (auto &m : img) m.next = -1;
   cell_amax = amax;
   for (size_t i = 0; i < H.size(); i++) {
     if (S[i].gone) continue;
@@ -262,7 +262,7 @@ void EventDriven::place(int i)
 void EventDriven::cell_insert(int i)
 {
   const int c = cell_of(i);
-  next[i] = head[c];
+  img[i].next = head[c];
   head[c] = i;
 }
 
@@ -273,9 +273,9 @@ void EventDriven::cell_remove(int i)
   int *link = &head[cell_of(i)];
   while (*link != i) {
     if (*link < 0) throw std::logic_error("EventDriven: a particle is missing from its cell list");
-    link = &next[*link];
+    link = &img[*link].next;
   }
-  *link = next[i];
+  *link = img[i].next;
 }
 
 // ---------------------------------------------------------------- prediction
@@ -427,7 +427,7 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
   if (DIM == 3) inside = inside && c[2] + zlo >= 0 && c[2] + zhi < nc[2];
   if (inside) {
     const int n0 = nc[0], n1 = nc[1];
-    const int *NX = next.data();
+    const Image *IM = img.data();
     const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
     // the first particle of every occupied cell, in cell order, gathered without branches
     // (which cells are empty is random: a branch per cell would be mispredicted often)
@@ -445,7 +445,7 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
         }
       }
     for (int f = 0; f < nfirst; f++)
-      for (int j = first[f]; j >= 0; j = NX[j])
+      for (int j = first[f]; j >= 0; j = IM[j].next)
         if (j != i) test(j, 0, 0, 0);
     return;
   }
@@ -462,7 +462,7 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
         if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
-        for (int j = head[cell]; j >= 0; j = next[j])
+        for (int j = head[cell]; j >= 0; j = img[j].next)
           if (j != i) test(j, kx, ky, kz);
       }
     }
@@ -497,7 +497,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
           }
           if (skip) continue;
           const int cell = (u[2] * nc[1] + u[1]) * nc[0] + u[0];
-          for (int j = head[cell]; j >= 0; j = next[j]) {
+          for (int j = head[cell]; j >= 0; j = img[j].next) {
             if (j == i) continue;
             const Hot &q = H[j];
             const long ki = key(i), kj = key(j);
@@ -573,7 +573,7 @@ void EventDriven::predict_all()
     if (S[i].gone) continue;
     const int *pk = img[i].k;
     const int16_t *c = S[i].c;
-    for (int j = next[i]; j >= 0; j = next[j]) {    // the rest of its own cell
+    for (int j = img[i].next; j >= 0; j = img[j].next) {    // the rest of its own cell
       const int *qk = img[j].k;
       pair(i, j, pk[0] - qk[0], pk[1] - qk[1], pk[2] - qk[2]);
     }
@@ -590,7 +590,7 @@ void EventDriven::predict_all()
         u[d] -= k[d] * nc[d];
       }
       if (skip) continue;
-      for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = next[j]) {
+      for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = img[j].next) {
         const int *qk = img[j].k;
         pair(i, j, pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]);
       }

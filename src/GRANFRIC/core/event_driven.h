@@ -221,7 +221,7 @@ class EventDriven {
     return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) +
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
-        (head.capacity() + next.capacity()) * sizeof(int) + queue.memory_bytes() +
+        head.capacity() * sizeof(int) + queue.memory_bytes() +
         paths.capacity() * sizeof(double) + acct.key.capacity() * sizeof(long) +
         acct.counted.capacity() + gtimes.capacity() * sizeof(double);
   }
@@ -298,10 +298,12 @@ class EventDriven {
   static_assert(sizeof(Sched) == 64, "a particle's schedule fills one cache line");
   big_vector<Sched> S;
   big_vector<double> WT;                 // next wall collision: time (empty without walls)
-  // periodic image of each particle's cell, read for every candidate partner (kept apart and
-  // small so the candidates' images stay in cache)
+  // periodic image of each particle's cell, and the next particle in its cell's list: what
+  // the candidate-partner search reads of a particle besides its hot record, so one 16-byte
+  // record (neighbours in cell order share its cache lines)
   struct Image {
     int k[3];
+    int next;
   };
   big_vector<Image> img;
   big_vector<int> ext, loc;             // internal -> external index, and back
@@ -322,7 +324,7 @@ class EventDriven {
   Vec3 L;                                // box lengths
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
-  big_vector<int> head, next;           // cell lists (singly linked)
+  big_vector<int> head;                 // cell lists (singly linked through Image::next)
   double cell_amax = 0.0;                // largest radius the cells admit
   bool started = false;                  // start() done since resize()
   std::vector<int> dirty;                // external indices changed since the last window
