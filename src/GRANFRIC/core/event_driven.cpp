@@ -927,7 +927,8 @@ void EventDriven::collide_pair(int i)
     s.last_off[d] = s.coff[d];
     S[j].last_off[d] = -s.coff[d];
   }
-  const bool book = counted(key(i) <= key(j) ? i : j);
+  // (without an accounting every collision is booked: the keys, another array, are not read)
+  const bool book = acct.counted.empty() || counted(key(i) <= key(j) ? i : j);
   if (history) history->push_back({t, ext[i], ext[j], hp.v, p.w, hq.v, q.w});
   const long ni = ++s.ncollisions, nj = ++S[j].ncollisions;
   if (counted(i)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
