@@ -33,6 +33,7 @@ int main(int argc, char **argv)
     o.hi[d] = (d < dim) ? side : 1.0;
   }
   EventDriven ed;
+  o.shape.assign(2, dim == 2 ? 0.5 : 0.4);
   ed.configure(o, 1, std::vector<LawParams>(4, LawParams::rough(1.0, -1.0)));
   ed.resize((int) N);
   std::mt19937_64 gen(1);
@@ -44,7 +45,6 @@ int main(int argc, char **argv)
     p.v = Vec3(G(gen), G(gen), dim == 3 ? G(gen) : 0.0);
     p.a = a;
     p.m = 1.0;
-    p.q = dim == 2 ? 0.5 : 0.4;
   }
   // Enskog mean free time at T = 1 (2D Henderson, 3D Carnahan-Starling)
   const double n = N / std::pow(side, dim);

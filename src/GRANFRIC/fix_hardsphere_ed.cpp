@@ -199,8 +199,7 @@ void FixHardsphereED::setup(int)
   bool vibrating = false;
   for (const auto &w : o.walls) vibrating = vibrating || w.vibrating();
   const bool same = queue_valid && !vibrating && ed.size() > 0 &&
-      ed.configured_as(o, atom->ntypes, law_table()) &&
-      ed.particle(0).q == pair->shape_factor();
+      ed.configured_as(o, atom->ntypes, law_table());
   if (dom_valid) {
     // the core of the last domain window: its next window compares the configuration (with
     // its own cell grid) and every atom itself
@@ -268,6 +267,7 @@ granfric::EDOptions FixHardsphereED::core_options() const
   o.max_collisions = maxevents;
   o.gamma_bins = gamma_bins;
   for (auto *w : walls) o.walls.push_back(w->wall());
+  o.shape.assign(atom->ntypes + 1, pair->shape_factor());
   return o;
 }
 
@@ -364,12 +364,14 @@ void FixHardsphereED::wrap_image(imageint &image, const int *dimg)
 
 // what the gathered window writes for core particle s at window time t: position in LAMMPS's
 // frame (less the stored periods), velocity, spin
-void FixHardsphereED::written_state(int s, double t, double *w, const granfric::Vec3 *xs) const
+void FixHardsphereED::written_state(int s, double t, double *w, const granfric::Vec3 *xs,
+                                    const int *off) const
 {
   (xs ? *xs : ed.position(s, t)).to(w);
   const int n = noff;
-  const int *off = &offset[(size_t) s * n];
-  for (int d = 0; d < n; d++) w[d] -= off[d] * wper[d];    // (wper = 0: not periodic, off = 0)
+  const int8_t *stored = &offset[(size_t) s * n];
+  // (wper = 0: not periodic, off = 0)
+  for (int d = 0; d < n; d++) w[d] -= (off ? off[d] : (int) stored[d]) * wper[d];
   ed.velocity(s, t).to(w + 3);
   ed.particle(s).w.to(w + 6);
 }
@@ -493,14 +495,15 @@ void FixHardsphereED::window_gather(double t0, double dt)
     for (int d = 0; reuse && d < 3; d++) {
       const double b = bx[d];
       if (b == w[d]) continue;
+      int8_t &off = offset[(size_t) s * noff + d];
       if (!domain->periodicity[d] || d >= noff) {
         reuse = false;
-      } else if (b == w[d] + domain->prd[d]) {
-        offset[(size_t) s * noff + d]--;
-      } else if (b == MAX(w[d] - domain->prd[d], domain->boxlo[d])) {
-        offset[(size_t) s * noff + d]++;
+      } else if (b == w[d] + domain->prd[d] && off > -OFFSET_MAX) {
+        off--;
+      } else if (b == MAX(w[d] - domain->prd[d], domain->boxlo[d]) && off < OFFSET_MAX) {
+        off++;
       } else {
-        reuse = false;
+        reuse = false;    // (or the offset would leave its range: start afresh)
       }
     }
   }
@@ -510,7 +513,6 @@ void FixHardsphereED::window_gather(double t0, double dt)
     check_overlaps = false;
   } else {
     configure_core(core_options());
-    const double q = pair->shape_factor();
     ed.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
       const int k = order[s];
@@ -520,7 +522,6 @@ void FixHardsphereED::window_gather(double t0, double dt)
       p.w = granfric::Vec3(field(k, 7), field(k, 8), field(k, 9));
       p.a = field(k, 10);
       p.m = field(k, 11);
-      p.q = q;
       p.type = (int) field(k, 12);
       p.t_last = field(k, 13);
     }
@@ -569,22 +570,26 @@ void FixHardsphereED::window_gather(double t0, double dt)
     whi[d] = domain->periodicity[d] ? domain->boxhi[d] + 0.5 * domain->prd[d] : INF;
   }
   // core particle s; i: its owned atom, or -1
+  bool offsets_full = false;    // an offset left its range: the next window starts afresh
   auto take_back = [&](int s, int i) {
-    int *off = &offset[(size_t) s * noff];
-    int dimg[3] = {0, 0, 0};
+    int8_t *stored = &offset[(size_t) s * noff];
+    int off[3] = {0, 0, 0}, dimg[3] = {0, 0, 0};
     const granfric::Vec3 xs = ed.position(s, dt);
     for (int d = 0; d < noff; d++) {
+      off[d] = stored[d];
       const double y = xs[d] - off[d] * wper[d];
       if (y < wlo[d] || y >= whi[d]) {
         const double L = domain->prd[d];
         dimg[d] = (int) std::floor((y - domain->boxlo[d]) / L);
         off[d] += dimg[d];
+        if (off[d] < -OFFSET_MAX || off[d] > OFFSET_MAX) offsets_full = true;
+        stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off[d]));
       }
     }
     if (i < 0) return;
     const auto p = std::as_const(ed).particle(s);
     double w[9];
-    written_state(s, dt, w, &xs);
+    written_state(s, dt, w, &xs, off);
     shift_image(image[i], dimg);
     memcpy(x[i], w, 3 * sizeof(double));
     memcpy(v[i], w + 3, 3 * sizeof(double));
@@ -595,7 +600,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     const int i = order[s] - myfirst;
     take_back(s, i >= 0 && i < nlocal ? i : -1);
   }
-  queue_valid = true;
+  queue_valid = !offsets_full;
   prev_dt = dt;
 }
 

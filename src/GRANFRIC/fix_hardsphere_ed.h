@@ -107,8 +107,12 @@ class FixHardsphereED : public Fix {
   bool queue_valid;
   double prev_dt;
   bool same_atoms = false;                      // otags unchanged since the core's last start
-  std::vector<int> offset;                      // periods between the core's frame and LAMMPS's
-  int noff = 3;                                 //   per core particle (the dimension)
+  // periods between the core's frame and LAMMPS's, per core particle and dimension (noff),
+  // within +-OFFSET_MAX: a window that would go beyond ends with the queue dropped, so the next
+  // one starts afresh from LAMMPS's positions with the offsets back at 0
+  std::vector<int8_t> offset;
+  static constexpr int OFFSET_MAX = 100;
+  int noff = 3;
   double wper[3] = {0, 0, 0};                   // period per offset (0: not periodic)
   std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window
   std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window
@@ -132,7 +136,8 @@ class FixHardsphereED : public Fix {
   bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);
   // (xs: the core position at t, when already computed)
-  void written_state(int s, double t, double *w, const granfric::Vec3 *xs = nullptr) const;
+  void written_state(int s, double t, double *w, const granfric::Vec3 *xs = nullptr,
+                     const int *off = nullptr) const;
   void pack_atom(int i, double t0, double *b) const;
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
   bool check_overlaps = false;
@@ -148,7 +153,7 @@ class FixHardsphereED : public Fix {
   // the core kept from the last domain window: its slots are matched to atoms by ID, and only
   // atoms whose state arrives different from the slot's are predicted afresh
   bool dom_valid = false;
-  double dom_dt = 0.0, dom_q = 0.0;
+  double dom_dt = 0.0;
   double dom_lo[3] = {0, 0, 0}, dom_hi[3] = {0, 0, 0};    // the kept cell grid (open dimensions)
   bool dom_whole[3] = {false, false, false};
   std::vector<int> dom_slot;                    // slot of each atom ID, -1: none

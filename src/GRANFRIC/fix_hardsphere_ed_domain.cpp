@@ -174,12 +174,11 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // longer here are emptied, new atoms fill empty slots. Owned atoms arrive as this rank left
   // them, so mostly only the copies are predicted again. The result is the same exact
   // trajectory as a fresh start of the same system.
-  const double q_now = pair->shape_factor();
   long maxtag = 0;    // the largest atom ID in this window (slots are looked up by ID)
   for (int i = 0; i < nlocal; i++) maxtag = std::max(maxtag, (long) tag[i]);
   for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k]);
   granfric::EDOptions o = base;
-  bool keep = dom_valid && q_now == dom_q && gmx[1] <= ed.cell_radius() && nlocal + nghost > 0;
+  bool keep = dom_valid && gmx[1] <= ed.cell_radius() && nlocal + nghost > 0;
   for (int d = 0; d < 3 && keep; d++) {
     keep = R.whole[d] == dom_whole[d];
     if (!keep || R.whole[d] || !domain->periodicity[d]) continue;
@@ -225,7 +224,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     p.w = Vec3(in[7], in[8], in[9]);
     p.a = in[10];
     p.m = in[11];
-    p.q = q_now;
     p.type = (int) in[12];
   };
   granfric::EDAccounting acct;
@@ -335,7 +333,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     }
     ed.set_clock(t0);
     ed.start();
-    dom_q = q_now;
     repredicted = n;
     totals[QUEUE_REBUILDS] += 1.0;
   }

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 namespace granfric_test {
 
@@ -108,6 +109,14 @@ struct CoreRun {
       e.sine = w.sine;
       o.walls.push_back(e);
     }
+    // the core keeps the shape factor per type: the reference's particles give it
+    o.shape.assign(ref.ntypes + 1, 0.0);
+    for (const RefParticle &r : ref.p) {
+      if (o.shape[r.type] != 0.0 && o.shape[r.type] != r.q)
+        throw std::invalid_argument("CoreRun: particles of one type with different shape factors");
+      o.shape[r.type] = r.q;
+    }
+    for (auto &q : o.shape) q = q == 0.0 ? 0.4 : q;
     ed.configure(o, ref.ntypes, ref.laws);
     ed.resize((int) ref.p.size());
     for (size_t i = 0; i < ref.p.size(); i++) {
@@ -118,7 +127,6 @@ struct CoreRun {
       p.w = r.w;
       p.a = r.a;
       p.m = r.m;
-      p.q = r.q;
       p.type = r.type;
       p.t_last = r.t_last;
     }

@@ -241,6 +241,50 @@ TEST(FixHardsphereED, QueueKeptAcrossRunsUnlessConfigurationChanges)
   EXPECT_EQ(fix->compute_vector(5), 4.0) << "an atom fewer: rebuilt";
 }
 
+// The fix keeps, per atom and dimension, the periods between the core's unwrapped frame and
+// LAMMPS's positions in one byte (at most +-100). Two discs in separate rows fly along x
+// without ever colliding, crossing the box about once per step (LAMMPS wraps them as it
+// reneighbors) or 120 times within one long step: when an offset would leave its range the
+// next step starts afresh, and the positions stay exact.
+TEST(FixHardsphereED, ManyPeriodsCrossedStayExact)
+{
+  const std::string setup =
+      "units lj\ndimension 2\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n"
+      "region box block 0 4 0 4 -0.5 0.5\ncreate_box 1 box\n"
+      "create_atoms 1 single 0.5 1.0 0.0\ncreate_atoms 1 single 2.5 3.0 0.0\n"
+      "set type 1 diameter 0.5\nset type 1 density 1.0\n"
+      "set atom 1 vx 3.3 vy 0.0\nset atom 2 vx -2.9 vy 0.0\n"
+      "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.9 0.2\n"
+      "fix ed all hardsphere/ed\nthermo 0\n";
+  const double x0[2] = {0.5, 2.5}, vx[2] = {3.3, -2.9};
+  auto check = [&](LAMMPS_NS::LAMMPS *lmp, double t, const char *what) {
+    auto *atom = lmp->atom;
+    for (int i = 0; i < atom->nlocal; i++) {
+      const int k = (int) atom->tag[i] - 1;
+      double xu[3];
+      lmp->domain->unmap(atom->x[i], atom->image[i], xu);
+      EXPECT_NEAR(xu[0], x0[k] + vx[k] * t, 1e-9 * (1.0 + std::fabs(vx[k] * t))) << what;
+      EXPECT_EQ(atom->v[i][0], vx[k]) << what;
+      EXPECT_GE(atom->x[i][0], -2.0) << what << ": LAMMPS's position stays near the box";
+      EXPECT_LE(atom->x[i][0], 6.0) << what << ": LAMMPS's position stays near the box";
+    }
+  };
+  auto a = make_lammps();
+  run(a.get(), setup + "timestep 1.0\nrun 400 post no");
+  check(a.get(), 400.0, "one crossing per step");
+  // atom 1 crosses 330 periods: its offset passes +-100 three times, so at least three more
+  // starts than the first one (and not one per step)
+  const double starts = a->modify->get_fix_by_id("ed")->compute_vector(5);
+  EXPECT_GE(starts, 4.0);
+  EXPECT_LE(starts, 8.0);
+  a.reset();
+  auto b = make_lammps();
+  run(b.get(), setup + "timestep 150.0\nrun 3 post no");
+  check(b.get(), 450.0, "about 120 crossings per step");
+  EXPECT_EQ(b->modify->get_fix_by_id("ed")->compute_vector(5), 3.0)
+      << "every step's offsets leave their range: each step starts afresh";
+}
+
 // r = 0.5 at area fraction 0.6: inelastic collapse without the TC model
 std::string collapsing()
 {

@@ -36,8 +36,14 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   if (o.tc > 0.0 && TL.size() != H.size()) TL.assign(H.size(), -INF);
   if (!(o.tc > 0.0)) TL.clear();
   has_gravity = norm2(o.gravity) != 0.0;
+  if (!o.shape.empty() && (int) o.shape.size() != nt + 1)
+    throw std::invalid_argument("shape table must have ntypes+1 entries");
+  for (int k = 1; k < (int) o.shape.size(); k++)
+    if (!(o.shape[k] > 0.0 && o.shape[k] <= 1.0))
+      throw std::invalid_argument("shape factor I/(m a^2) must be in (0, 1]");
   ntypes = nt;
   laws = table;
+  qt = o.shape.empty() ? std::vector<double>(nt + 1, 0.4) : o.shape;
   L = Vec3(o.hi[0] - o.lo[0], o.hi[1] - o.lo[1], o.hi[2] - o.lo[2]);
   if (o.dim == 2 && o.gravity.z != 0.0)
     throw std::invalid_argument("gravity must lie in the x-y plane in 2d");
@@ -74,7 +80,8 @@ bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<La
   if (o.dim != opt.dim || nt != ntypes || !same_laws(table, laws) ||
       o.gravity.x != opt.gravity.x || o.gravity.y != opt.gravity.y || o.gravity.z != opt.gravity.z ||
       o.tc != opt.tc || o.max_collisions != opt.max_collisions || o.gamma_bins != opt.gamma_bins ||
-      o.walls.size() != opt.walls.size())
+      o.walls.size() != opt.walls.size() ||
+      (o.shape.empty() ? std::vector<double>(nt + 1, 0.4) : o.shape) != qt)
     return false;
   for (int d = 0; d < 3; d++)
     if (o.lo[d] != opt.lo[d] || o.hi[d] != opt.hi[d] || o.periodic[d] != opt.periodic[d] ||
@@ -834,7 +841,8 @@ void EventDriven::collide_wall(int i)
   LawParams law = w.laws[s.type];
   const bool tc_elastic = tc_recent(i, t);
   if (tc_elastic) law = law.elastic();
-  Body b{h.v, p.w, p.m, h.a, p.q};
+  const double q = qt[s.type];
+  Body b{h.v, p.w, p.m, h.a, q};
   Collision c;    // (its dE is set below for moving walls)
   if (w.T >= 0.0) {
     c = thermal_reemission(w, i, n, t);
@@ -848,7 +856,7 @@ void EventDriven::collide_wall(int i)
   // kinetic energy change in the lab frame: a moving wall does work on the particle, so this is
   // not the law's dissipation (equal to it for a wall at rest)
   const double dE = 0.5 * p.m * (norm2(c.v1) - norm2(h.v)) +
-      0.5 * p.q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
+      0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
   c.dE = w.vibrating() ? dE : c.dE;
   h.v = c.v1;
   p.w = c.w1;
@@ -909,7 +917,7 @@ void EventDriven::collide_pair(int i)
   const bool tc_elastic = tc_recent(i, t) || tc_recent(j, t);
   if (!TL.empty()) TL[i] = TL[j] = t;
   if (tc_elastic) law = law.elastic();
-  Body b1{hp.v, p.w, p.m, hp.a, p.q}, b2{hq.v, q.w, q.m, hq.a, q.q};
+  Body b1{hp.v, p.w, p.m, hp.a, qt[s.type]}, b2{hq.v, q.w, q.m, hq.a, qt[S[j].type]};
   const Collision c = collide(law, b1, b2, n);
   hp.v = c.v1;
   p.w = c.w1;
@@ -1125,7 +1133,7 @@ void EventDriven::global_event(int k)
     double e = 0.0;
     for (int i = 0; i < n; i++) {
       const Cold &p = C[i];
-      if (counted(i)) e += 0.5 * p.m * (norm2(H[i].v) + p.q * H[i].a * H[i].a * norm2(p.w));
+      if (counted(i)) e += 0.5 * p.m * (norm2(H[i].v) + qt[S[i].type] * H[i].a * H[i].a * norm2(p.w));
     }
     return e;
   };

@@ -38,20 +38,21 @@ struct EDParticleT {
   R<Vec3> x, v;          // position (unwrapped), velocity
   R<double> t, a;        // local time of x and v (internal), radius
   R<Vec3> w;             // angular velocity
-  R<double> m, q;        // mass, moment of inertia / (m a^2)
+  R<double> m;           // mass
+  const double &q;       // moment of inertia / (m a^2): its type's (EDOptions::shape), read-only
   R<double> t_last;      // time of the last collision (window time), for the TC model
   R<int16_t> type;       // 1 .. ntypes
   template <bool C>
   EDParticleT &operator=(const EDParticleT<C> &o)
   {
     static_assert(!CONST, "a const particle cannot be assigned");
-    x = o.x, v = o.v, t = o.t, a = o.a, w = o.w, m = o.m, q = o.q, t_last = o.t_last, type = o.type;
+    x = o.x, v = o.v, t = o.t, a = o.a, w = o.w, m = o.m, t_last = o.t_last, type = o.type;
     return *this;
   }
   EDParticleT &operator=(const EDParticleT &o) { return operator=<CONST>(o); }
   EDParticleT(const EDParticleT &) = default;
   EDParticleT(R<Vec3> x_, R<Vec3> v_, R<double> t_, R<double> a_, R<Vec3> w_, R<double> m_,
-              R<double> q_, R<double> tl_, R<int16_t> ty_) :
+              const double &q_, R<double> tl_, R<int16_t> ty_) :
       x(x_), v(v_), t(t_), a(a_), w(w_), m(m_), q(q_), t_last(tl_), type(ty_)
   {
   }
@@ -94,6 +95,9 @@ struct EDOptions {
   long max_collisions = 1000000;        // per particle per window (inelastic-collapse guard)
   int gamma_bins = 0;                   // > 0: histogram of impact angles in (pi/2, pi]
   std::vector<EDWall> walls;            // in non-periodic dimensions
+  // moment of inertia / (m a^2) by particle type (index 0 unused), each in (0, 1]; empty:
+  // 0.4 (solid spheres) for every type
+  std::vector<double> shape;
 };
 
 struct EDStats {
@@ -245,11 +249,11 @@ class EventDriven {
   static_assert(sizeof(Hot) == 64, "what a pair prediction reads fills one cache line");
   struct Cold {
     Vec3 w;                   // angular velocity
-    double m = 1.0, q = 0.4;  // mass, moment of inertia / (m a^2)
+    double m = 1.0;           // mass (the shape factor q is its type's: qt)
     uint32_t ncoll = 0;       // collisions since start(): invalidates partners' predictions
     int last_partner = -1;    // partner of the last collision
   };
-  static_assert(sizeof(Cold) == 48, "w, m, q, the collision counter and the last partner: 48 bytes");
+  static_assert(sizeof(Cold) == 40, "w, m, the collision counter and the last partner: 40 bytes");
   big_vector<Hot> H;
   big_vector<Cold> C;
   big_vector<double> TL;                 // time of the last collision (only with tc > 0)
@@ -260,14 +264,14 @@ class EventDriven {
     Hot &h = H[i];
     Cold &c = C[i];
     double &tl = TL.empty() ? (tl_none = -INF) : TL[i];
-    return EDParticle(h.x, h.v, h.t, h.a, c.w, c.m, c.q, tl, S[i].type);
+    return EDParticle(h.x, h.v, h.t, h.a, c.w, c.m, qt[S[i].type], tl, S[i].type);
   }
   EDParticleView view(int i) const
   {
     const Hot &h = H[i];
     const Cold &c = C[i];
     const double &tl = TL.empty() ? TL_NONE : TL[i];
-    return EDParticleView(h.x, h.v, h.t, h.a, c.w, c.m, c.q, tl, S[i].type);
+    return EDParticleView(h.x, h.v, h.t, h.a, c.w, c.m, qt[S[i].type], tl, S[i].type);
   }
   // the TC model: did i collide within tc before t? (only with tc > 0; a last collision 'in the
   // future' after a clock reset does not count)
@@ -321,6 +325,7 @@ class EventDriven {
   bool has_gravity = false;
   int ntypes = 0;
   std::vector<LawParams> laws;
+  std::vector<double> qt;                // moment of inertia / (m a^2) by type
   Vec3 L;                                // box lengths
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
