@@ -1,7 +1,9 @@
 """GRANFRIC benchmark: collisions per second per core of fix hardsphere/ed through LAMMPS, for
 2D and 3D, N = 10^3 ... 10^6, fractions 0.05 and 0.3, and steps of 0.1 ... 10 mean free times;
-memory per particle. Prints a table and the ratios asked for (cost per collision at N = 10^6
-against N = 10^3); writes bench/results/ed_speed.csv. Not a test: figures, measured in one run.
+memory per particle, with the LAMMPS settings doc/fix_hardsphere_ed.rst recommends (in.speed's
+default, lean = 1) and, from a short extra run of each size, with LAMMPS's defaults (lean = 0).
+Prints a table and the ratios asked for (cost per collision at N = 10^6 against N = 10^3);
+writes bench/results/ed_speed.csv. Not a test: figures, measured in one run.
 
     PYTHONPATH=tools /usr/bin/python3 bench/ed_speed.py [--quick] [--np 1]
 """
@@ -18,10 +20,11 @@ sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tools"))
 from granfric import lmp  # noqa: E402
 
 
-def run_one(dim, nside, phi, dtmft, ncoll, np_=1):
+def run_one(dim, nside, phi, dtmft, ncoll, np_=1, lean=1, neq=5):
     t0 = time.time()
     p = lmp.run(os.path.join(HERE, "in.speed"), {"dim": dim, "nside": nside, "phi": phi,
-                                                   "dtmft": dtmft, "ncoll": ncoll},
+                                                   "dtmft": dtmft, "ncoll": ncoll, "lean": lean,
+                                                   "neq": neq},
                 np=np_, log=os.devnull, quiet=False)
     out = p.stdout
     loop = [float(m) for m in re.findall(r"Loop time of ([0-9.eE+-]+)", out)][-1]
@@ -53,18 +56,27 @@ def main():
     rows = []
     for dim, nside, phi, dtmft in tqdm(cases, desc="benchmark runs"):
         ncoll = 10 if nside ** dim >= 10 ** 5 else 20
-        rows.append(run_one(dim, nside, phi, dtmft, ncoll, a.np))
+        r = run_one(dim, nside, phi, dtmft, ncoll, a.np)
+        if dtmft == 1.0:    # memory only: a short run with LAMMPS's default settings
+            d = run_one(dim, nside, phi, dtmft, 1, a.np, lean=0, neq=1)
+            r["lammps_defaults_MB_per_rank"] = d["lammps_MB_per_rank"]
+        else:
+            r["lammps_defaults_MB_per_rank"] = float("nan")
+        rows.append(r)
     os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
     path = os.path.join(HERE, "results", "ed_speed.csv")
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
-    print(f"\n| dim | N | fraction | dt (mean free times) | collisions/s per core | LAMMPS MB/rank | bytes/particle |")
-    print("|---|---|---|---|---|---|---|")
+    print("\n| dim | N | fraction | dt (mean free times) | collisions/s per core | LAMMPS MB/rank | "
+          "bytes/particle | bytes/particle, LAMMPS defaults |")
+    print("|---|---|---|---|---|---|---|---|")
     for r in rows:
+        dflt = r["lammps_defaults_MB_per_rank"] * 1048576 / r["N"]
         print(f"| {r['dim']} | {r['N']} | {r['phi']} | {r['dt_mft']} | {r['coll_per_s']:.3g} | "
-              f"{r['lammps_MB_per_rank']:.1f} | {r['lammps_MB_per_rank'] * 1048576 / r['N']:.0f} |")
+              f"{r['lammps_MB_per_rank']:.1f} | {r['lammps_MB_per_rank'] * 1048576 / r['N']:.0f} | "
+              f"{'' if dflt != dflt else f'{dflt:.0f}'} |")
     print()
     for dim in (2, 3):
         for phi in (0.05, 0.3):
