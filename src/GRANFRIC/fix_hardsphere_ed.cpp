@@ -364,16 +364,12 @@ void FixHardsphereED::wrap_image(imageint &image, const int *dimg)
 
 // what the gathered window writes for core particle s at window time t: position in LAMMPS's
 // frame (less the stored periods), velocity, spin
-void FixHardsphereED::written_state(int s, double t, double *w, const granfric::Vec3 *xs,
-                                    const int *off) const
+void FixHardsphereED::written_state(int s, double t, double *w) const
 {
-  (xs ? *xs : ed.position(s, t)).to(w);
-  const int n = noff;
-  const int8_t *stored = &offset[(size_t) s * n];
-  // (wper = 0: not periodic, off = 0)
-  for (int d = 0; d < n; d++) w[d] -= (off ? off[d] : (int) stored[d]) * wper[d];
-  ed.velocity(s, t).to(w + 3);
-  ed.particle(s).w.to(w + 6);
+  ed.state(s, t, w, w + 3, w + 6);
+  const int8_t *off = &offset[(size_t) s * noff];
+  for (int d = 0; d < noff; d++)
+    if (off[d]) w[d] -= off[d] * wper[d];    // (not periodic: wper = 0 and off = 0)
 }
 
 double FixHardsphereED::window_start_time() const
@@ -571,30 +567,31 @@ void FixHardsphereED::window_gather(double t0, double dt)
   }
   // core particle s; i: its owned atom, or -1
   bool offsets_full = false;    // an offset left its range: the next window starts afresh
+  // (the same arithmetic as written_state, with the offsets updated here)
   auto take_back = [&](int s, int i) {
     int8_t *stored = &offset[(size_t) s * noff];
-    int off[3] = {0, 0, 0}, dimg[3] = {0, 0, 0};
-    const granfric::Vec3 xs = ed.position(s, dt);
+    int dimg[3] = {0, 0, 0};
+    double w[9];
+    ed.state(s, dt, w, w + 3, w + 6);
     for (int d = 0; d < noff; d++) {
-      off[d] = stored[d];
-      const double y = xs[d] - off[d] * wper[d];
+      int off = stored[d];
+      double y = off ? w[d] - off * wper[d] : w[d];
       if (y < wlo[d] || y >= whi[d]) {
         const double L = domain->prd[d];
         dimg[d] = (int) std::floor((y - domain->boxlo[d]) / L);
-        off[d] += dimg[d];
-        if (off[d] < -OFFSET_MAX || off[d] > OFFSET_MAX) offsets_full = true;
-        stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off[d]));
+        off += dimg[d];
+        if (off < -OFFSET_MAX || off > OFFSET_MAX) offsets_full = true;
+        stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off));
+        y = off ? w[d] - off * wper[d] : w[d];
       }
+      w[d] = y;
     }
     if (i < 0) return;
-    const auto p = std::as_const(ed).particle(s);
-    double w[9];
-    written_state(s, dt, w, &xs, off);
     shift_image(image[i], dimg);
     memcpy(x[i], w, 3 * sizeof(double));
     memcpy(v[i], w + 3, 3 * sizeof(double));
     memcpy(omega[i], w + 6, 3 * sizeof(double));
-    set_tlast(i, p.t_last, t0);
+    if (tlast) set_tlast(i, std::as_const(ed).particle(s).t_last, t0);
   };
   for (int s = 0; s < ntotal; s++) {
     const int i = order[s] - myfirst;

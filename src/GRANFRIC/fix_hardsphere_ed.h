@@ -136,8 +136,7 @@ class FixHardsphereED : public Fix {
   bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);
   // (xs: the core position at t, when already computed)
-  void written_state(int s, double t, double *w, const granfric::Vec3 *xs = nullptr,
-                     const int *off = nullptr) const;
+  void written_state(int s, double t, double *w) const;
   void pack_atom(int i, double t0, double *b) const;
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
   bool check_overlaps = false;

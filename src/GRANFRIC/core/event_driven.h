@@ -237,6 +237,15 @@ class EventDriven {
   // state of particle e (external index) at window time t (lazy update, not stored)
   Vec3 position(int e, double t) const { return pos(loc[e], t); }
   Vec3 velocity(int e, double t) const { return vel(loc[e], t); }
+  // position, velocity and angular velocity of particle e at window time t into x, v, w (3
+  // values each): what position(), velocity() and particle().w give, with one index lookup
+  void state(int e, double t, double *x, double *v, double *w) const
+  {
+    const int i = loc[e];
+    pos(i, t).to(x);
+    vel(i, t).to(v);
+    C[i].w.to(w);
+  }
 
  private:
   // the particles in internal order: what every candidate-partner test reads (one cache line),
