@@ -246,9 +246,11 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     auto holds = [&](int sl, const double *xa, const double *va, const double *wa, double ra,
                      double ma, int ta) {
       const auto p = std::as_const(ed).particle(sl);
-      const Vec3 xs = ed.position(sl, 0.0), vs = ed.velocity(sl, 0.0);
       bool same = ra == p.a && ma == p.m && ta == p.type;
-      for (int d = 0; d < 3 && same; d++) same = xa[d] == xs[d] && va[d] == vs[d] && wa[d] == p.w[d];
+      if (!same) return false;
+      double xs[3], vs[3], ws[3];
+      ed.state(sl, 0.0, xs, vs, ws);
+      for (int d = 0; d < 3 && same; d++) same = xa[d] == xs[d] && va[d] == vs[d] && wa[d] == ws[d];
       return same;
     };
     for (int a = 0; a < nlocal + nghost; a++) {
@@ -523,9 +525,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   for (int i = 0; i < nlocal; i++) {
     const int e = lslot[i];
-    const auto p = std::as_const(ed).particle(e);
     double xe[3];
-    ed.position(e, dt).to(xe);
+    ed.state(e, dt, xe, v[i], omega[i]);
     int dimg[3] = {0, 0, 0};
     for (int d = 0; d < dim; d++) {    // (nothing moves in z in 2d)
       if (xe[d] < wlo[d] || xe[d] >= whi[d]) {
@@ -536,9 +537,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     }
     shift_image(image[i], dimg);
     memcpy(x[i], xe, sizeof(xe));
-    ed.velocity(e, dt).to(v[i]);
-    p.w.to(omega[i]);
-    set_tlast(i, p.t_last, t0);
+    if (tlast) set_tlast(i, std::as_const(ed).particle(e).t_last, t0);
   }
   long lsum[8] = {last.collisions, last.sliding, last.tc_elastic, last.energy_created,
                   last.crossings, last.wall_collisions, last.global_events, repredicted};
