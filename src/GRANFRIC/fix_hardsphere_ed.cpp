@@ -633,7 +633,9 @@ double FixHardsphereED::memory_usage()
   return (tlast ? (double) atom->nmax * sizeof(double) : 0.0) + (double) ed.memory_bytes() + bytes(sendbuf) +
       bytes(recvbuf) + bytes(order) + bytes(otags) + bytes(offset) +
       bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
-      bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags);
+      bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags) + bytes(dom_slot) +
+      bytes(dom_free) + bytes(lslot) + bytes(sowned) + bytes(sowned_prev) + bytes(sseen) +
+      bytes(dom_sent) + bytes(dom_inslot) + bytes(dom_evlist);
 }
 
 void FixHardsphereED::grow_arrays(int nmax)

@@ -160,6 +160,10 @@ class FixHardsphereED : public Fix {
   std::vector<int> lslot;                       // slot of each owned atom (this window)
   std::vector<uint8_t> sowned, sowned_prev;     // slot owned in this / the last window
   std::vector<int> sseen;                       // slot matched in this window (stamp)
+  // scratch of every window, kept to spare their clearing: atoms sent, the slot of each
+  // atom, the events of each slot
+  std::vector<char> dom_sent;
+  std::vector<int> dom_inslot, dom_evlist;
   int dom_stamp = 0;
   std::vector<tagint> kick_tags;
 };

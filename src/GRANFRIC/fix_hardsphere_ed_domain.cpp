@@ -138,13 +138,46 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   };
 
   // ------------------------------------------------ send the atoms others need
-  std::vector<char> sent(nlocal, 0);
+  // (the test of inside() without the image shift: per other rank with atoms, the dimensions
+  // its region does not cover whole, each with its interval and period, 0 if not periodic, so
+  // that x - L and x + L are x again)
+  struct Test {
+    int nd = 0, dims[3];
+    double lo[3], hi[3], L[3];
+  };
+  std::vector<Test> tests;
+  for (int r = 0; r < nprocs; r++) {
+    if (r == me || bb[6 * r] > bb[6 * r + 3]) continue;
+    Test T;
+    for (int d = 0; d < 3; d++) {
+      if (reg[r].whole[d]) continue;
+      T.dims[T.nd] = d;
+      T.lo[T.nd] = reg[r].lo[d];
+      T.hi[T.nd] = reg[r].hi[d];
+      T.L[T.nd] = domain->periodicity[d] ? domain->prd[d] : 0.0;
+      T.nd++;
+    }
+    tests.push_back(T);
+  }
+  auto to_send = [&](const double *xi) {
+    for (const Test &T : tests) {
+      bool in = true;
+      for (int j = 0; j < T.nd && in; j++) {
+        const double y = xi[T.dims[j]], lo = T.lo[j], hi = T.hi[j], L = T.L[j];
+        in = (y >= lo && y <= hi) || (y - L >= lo && y - L <= hi) || (y + L >= lo && y + L <= hi);
+      }
+      if (in) return true;
+    }
+    return false;
+  };
+  dom_sent.resize(nlocal);    // (every entry is set below: no clearing)
+  std::vector<char> &sent = dom_sent;
   dsend.clear();
   int s3[3];
   for (int i = 0; i < nlocal; i++) {
-    for (int r = 0; r < nprocs && !sent[i]; r++)
-      if (r != me && bb[6 * r] <= bb[6 * r + 3] && inside(reg[r], x[i], s3)) sent[i] = 1;
-    if (!sent[i]) continue;
+    const bool send = to_send(x[i]);
+    sent[i] = send;
+    if (!send) continue;
     const size_t o = dsend.size();
     dsend.resize(o + NPACK);
     pack_atom(i, t0, &dsend[o]);
@@ -190,7 +223,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   keep = keep && ed.configured_as(o, atom->ntypes, law_table());
   // every atom's slot (-1: a new one), and whether the empty slots suffice
-  std::vector<int> inslot(nlocal + nghost, -1);
+  dom_inslot.resize(nlocal + nghost);    // (set for every atom before use)
+  std::vector<int> &inslot = dom_inslot;
   if (keep) {
     if ((long) dom_slot.size() <= maxtag) dom_slot.resize(maxtag + 1, -1);
     dom_stamp++;
@@ -244,15 +278,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     lslot.resize(nlocal);
     // does slot sl hold, bit for bit, the state xa, va, wa, radius, mass, type (at window time 0)?
     auto holds = [&](int sl, const double *xa, const double *va, const double *wa, double ra,
-                     double ma, int ta) {
-      const auto p = std::as_const(ed).particle(sl);
-      bool same = ra == p.a && ma == p.m && ta == p.type;
-      if (!same) return false;
-      double xs[3], vs[3], ws[3];
-      ed.state(sl, 0.0, xs, vs, ws);
-      for (int d = 0; d < 3 && same; d++) same = xa[d] == xs[d] && va[d] == vs[d] && wa[d] == ws[d];
-      return same;
-    };
+                     double ma, int ta) { return ed.holds(sl, 0.0, xa, va, wa, ra, ma, ta); };
     for (int a = 0; a < nlocal + nghost; a++) {
       int sl = inslot[a];
       const bool own = a < nlocal;
@@ -422,7 +448,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     if (h.j >= 0) start[h.j + 1]++;
   }
   for (int e = 0; e < n; e++) start[e + 1] += start[e];
-  std::vector<int> evlist(start[n]), fill(start.begin(), start.end() - 1);
+  dom_evlist.resize(start[n]);    // (every entry is set below)
+  std::vector<int> &evlist = dom_evlist, fill(start.begin(), start.end() - 1);
   for (int m = 0; m < (int) history.size(); m++) {
     const auto &h = history[m];
     evlist[fill[h.i]++] = m;
