@@ -164,6 +164,7 @@ class FixHardsphereED : public Fix {
   // atom, the events of each slot
   std::vector<char> dom_sent;
   std::vector<int> dom_inslot, dom_evlist;
+  std::vector<uint8_t> dom_watch;               // slots whose events are recorded
   int dom_stamp = 0;
   std::vector<tagint> kick_tags;
 };

@@ -368,8 +368,15 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   acct.key.assign(gtag.begin(), gtag.end());
   acct.counted.assign(sowned.begin(), sowned.end());
   ed.set_accounting(std::move(acct));
+  // the events that matter here: those of the copies (influence times, histories compared)
+  // and of the sent atoms (histories published); a collision of two other owned atoms changes
+  // no influence time (owned atoms have t* = infinity) and is published by nobody
+  dom_watch.resize(n);
+  for (int e = 0; e < n; e++) dom_watch[e] = !sowned[e];
+  for (int i = 0; i < nlocal; i++)
+    if (sent[i]) dom_watch[lslot[i]] = 1;
   history.clear();
-  ed.record_events(&history);
+  ed.record_events(&history, dom_watch.data());
   if (check_overlaps && keep) {
     // a kept core continues an exact trajectory: the once-per-run overlap check is needed
     // only if something other than this fix changed atoms a rank had written back (all

@@ -864,7 +864,8 @@ void EventDriven::collide_wall(int i)
   if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(h.v));
   p.ncoll++;
   p.last_partner = -1;
-  if (history) history->push_back({t, ext[i], -1 - s.wall, h.v, p.w, Vec3(), Vec3()});
+  if (history && (!record_only || record_only[ext[i]]))
+    history->push_back({t, ext[i], -1 - s.wall, h.v, p.w, Vec3(), Vec3()});
   const long ni = ++s.ncollisions;
   if (counted(i)) {
     stats.wall_collisions++;
@@ -937,7 +938,8 @@ void EventDriven::collide_pair(int i)
   }
   // (without an accounting every collision is booked: the keys, another array, are not read)
   const bool book = acct.counted.empty() || counted(key(i) <= key(j) ? i : j);
-  if (history) history->push_back({t, ext[i], ext[j], hp.v, p.w, hq.v, q.w});
+  if (history && (!record_only || record_only[ext[i]] || record_only[ext[j]]))
+    history->push_back({t, ext[i], ext[j], hp.v, p.w, hq.v, q.w});
   const long ni = ++s.ncollisions, nj = ++S[j].ncollisions;
   if (counted(i)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
   if (counted(j)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, nj);

@@ -201,7 +201,13 @@ class EventDriven {
   // optional per-window records: every collision into *h; an upper bound of every particle's
   // path length from window time 0 to t (from the largest speed it had at time 0 or right
   // after a velocity change, plus what gravity adds; track_paths(true) after start())
-  void record_events(std::vector<EDEvent> *h) { history = h; }
+  // with `only` (a flag per particle, external index, kept alive by the caller): only the
+  // events of flagged particles (pair collisions with at least one flagged partner)
+  void record_events(std::vector<EDEvent> *h, const uint8_t *only = nullptr)
+  {
+    history = h;
+    record_only = only;
+  }
   void track_paths(bool on)
   {
     paths.resize(on ? H.size() : 0);    // (every entry is set below)
@@ -334,6 +340,7 @@ class EventDriven {
   long crossings_since_reorder = 0;
   double clock = 0.0;
   std::vector<EDEvent> *history = nullptr;
+  const uint8_t *record_only = nullptr;
   std::vector<double> paths;             // largest squared speed, by external index
   EDAccounting acct;
   bool counted(int i) const { return acct.counted.empty() || acct.counted[ext[i]]; }
