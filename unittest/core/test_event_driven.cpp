@@ -695,6 +695,48 @@ TEST(EventDriven, LastCollisionTimesFollowReorderAndRebase)
   }
 }
 
+// Recording only the events of flagged particles (as the MPI windows do for copies and sent
+// atoms) gives exactly the events of the full record that involve a flagged particle, in the
+// same order, and the same trajectory; pair collisions and wall collisions alike.
+TEST(EventDriven, RecordsOnlyFlaggedParticlesEvents)
+{
+  SystemSpec s = spec_of(400, 2, 0.3, 23);
+  Reference ref = make_system(s, LawParams::rough(0.9, 0.2));
+  ref.periodic[1] = false;
+  ref.walls.push_back({1, -1, ref.lo.y - 0.6, LawParams::rough(0.8, -1.0)});
+  ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, LawParams::rough(0.8, -1.0)});
+  const double dt = 3.0 * mean_free_time(ref);
+  std::vector<uint8_t> flag(ref.p.size(), 0);
+  for (size_t e = 0; e < flag.size(); e += 7) flag[e] = 1;
+  CoreRun all(ref), some(ref);
+  all.ed.start();
+  some.ed.start();
+  std::vector<EDEvent> ha, hs;
+  all.ed.record_events(&ha);
+  some.ed.record_events(&hs, flag.data());
+  all.total.add(all.ed.advance_to(dt));
+  some.total.add(some.ed.advance_to(dt));
+  std::vector<EDEvent> expected;
+  for (const EDEvent &e : ha)
+    if (flag[e.i] || (e.j >= 0 && flag[e.j])) expected.push_back(e);
+  ASSERT_GT(all.total.wall_collisions, 0);
+  ASSERT_GT(expected.size(), 50u);
+  ASSERT_LT(expected.size(), ha.size() / 2) << "the flags select a minority of the events";
+  ASSERT_EQ(hs.size(), expected.size());
+  bool walls = false;
+  for (size_t k = 0; k < hs.size(); k++) {
+    EXPECT_EQ(hs[k].t, expected[k].t);
+    EXPECT_EQ(hs[k].i, expected[k].i);
+    EXPECT_EQ(hs[k].j, expected[k].j);
+    EXPECT_EQ(norm(hs[k].vi - expected[k].vi), 0.0);
+    walls = walls || hs[k].j < 0;
+  }
+  EXPECT_TRUE(walls) << "some recorded events are wall collisions";
+  EXPECT_EQ(some.total.collisions, all.total.collisions);
+  for (int e = 0; e < all.ed.size(); e++)
+    EXPECT_EQ(norm(all.ed.position(e, dt) - some.ed.position(e, dt)), 0.0);
+}
+
 TEST(Prediction, PairContactTime)
 {
   // head-on: distance 3 along x, closing at speed 2, contact at sigma = 1 after 1
