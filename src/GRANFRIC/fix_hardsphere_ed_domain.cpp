@@ -276,16 +276,13 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     }
     sowned.assign(ns, 0);
     lslot.resize(nlocal);
-    // does slot sl hold, bit for bit, the state xa, va, wa, radius, mass, type (at window time 0)?
-    auto holds = [&](int sl, const double *xa, const double *va, const double *wa, double ra,
-                     double ma, int ta) { return ed.holds(sl, 0.0, xa, va, wa, ra, ma, ta); };
     for (int a = 0; a < nlocal + nghost; a++) {
       int sl = inslot[a];
       const bool own = a < nlocal;
       const bool was_mine = own && sl >= 0 && sowned_prev[sl];
       // an atom this rank owned and wrote back: compared in place (most of them are unchanged)
       if (was_mine) {
-        if (holds(sl, x[a], v[a], omega[a], radius[a], rmass[a], type[a])) {
+        if (ed.holds(sl, 0.0, x[a], v[a], omega[a], radius[a], rmass[a], type[a])) {
           gmask[sl] = mask[a];
           sowned[sl] = 1;
           lslot[a] = sl;
@@ -295,7 +292,9 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       }
       double in[NPACK];
       record_of(a, in);
-      const bool same = sl >= 0 && !was_mine && holds(sl, in + 1, in + 4, in + 7, in[10], in[11], (int) in[12]);
+      // (does the slot hold this state bit for bit, at window time 0?)
+      const bool same = sl >= 0 && !was_mine &&
+          ed.holds(sl, 0.0, in + 1, in + 4, in + 7, in[10], in[11], (int) in[12]);
       if (sl < 0) {
         sl = dom_free.back();
         dom_free.pop_back();
