@@ -135,7 +135,6 @@ class FixHardsphereED : public Fix {
   void window_gather(double t0, double dt);
   bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);
-  // (xs: the core position at t, when already computed)
   void written_state(int s, double t, double *w) const;
   void pack_atom(int i, double t0, double *b) const;
   int allgather(const std::vector<double> &send, std::vector<double> &recv);

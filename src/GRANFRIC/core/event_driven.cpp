@@ -25,6 +25,12 @@ void EDStats::add(const EDStats &o)
   for (size_t k = 0; k < o.gamma_hist.size(); k++) gamma_hist[k] += o.gamma_hist[k];
 }
 
+// the shape factor of every type (index 0 unused): the options', or 0.4 (solid spheres)
+static std::vector<double> shape_table(const EDOptions &o, int nt)
+{
+  return o.shape.empty() ? std::vector<double>(nt + 1, 0.4) : o.shape;
+}
+
 void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawParams> &table)
 {
   if (o.dim != 2 && o.dim != 3) throw std::invalid_argument("dimension must be 2 or 3");
@@ -43,7 +49,7 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
       throw std::invalid_argument("shape factor I/(m a^2) must be in (0, 1]");
   ntypes = nt;
   laws = table;
-  qt = o.shape.empty() ? std::vector<double>(nt + 1, 0.4) : o.shape;
+  qt = shape_table(o, nt);
   L = Vec3(o.hi[0] - o.lo[0], o.hi[1] - o.lo[1], o.hi[2] - o.lo[2]);
   if (o.dim == 2 && o.gravity.z != 0.0)
     throw std::invalid_argument("gravity must lie in the x-y plane in 2d");
@@ -81,7 +87,7 @@ bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<La
       o.gravity.x != opt.gravity.x || o.gravity.y != opt.gravity.y || o.gravity.z != opt.gravity.z ||
       o.tc != opt.tc || o.max_collisions != opt.max_collisions || o.gamma_bins != opt.gamma_bins ||
       o.walls.size() != opt.walls.size() ||
-      (o.shape.empty() ? std::vector<double>(nt + 1, 0.4) : o.shape) != qt)
+      shape_table(o, nt) != qt)
     return false;
   for (int d = 0; d < 3; d++)
     if (o.lo[d] != opt.lo[d] || o.hi[d] != opt.hi[d] || o.periodic[d] != opt.periodic[d] ||

@@ -352,7 +352,7 @@ class EventDriven {
   bool has_gravity = false;
   int ntypes = 0;
   std::vector<LawParams> laws;
-  std::vector<double> qt;                // moment of inertia / (m a^2) by type
+  std::vector<double> qt = {0.4, 0.4};   // moment of inertia / (m a^2) by type (configure)
   Vec3 L;                                // box lengths
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
