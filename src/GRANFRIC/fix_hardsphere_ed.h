@@ -162,7 +162,7 @@ class FixHardsphereED : public Fix {
   // scratch of every window, kept to spare their clearing: atoms sent, the slot of each
   // atom, the events of each slot
   std::vector<char> dom_sent;
-  std::vector<int> dom_inslot, dom_evlist;
+  std::vector<int> dom_inslot, dom_evlist, dom_cslot;    // (dom_cslot: the copies' slots)
   std::vector<uint8_t> dom_watch;               // slots whose events are recorded
   int dom_stamp = 0;
   std::vector<tagint> kick_tags;

@@ -239,6 +239,82 @@ TEST(EventDriven, ChangesBetweenWindowsEqualReference)
 // new ones put into empty slots between windows continues exactly as a fresh start() of the
 // changed system would (the fresh core sees only the present particles); an empty slot has no
 // events and is never a partner.
+// nudge(): states re-rounded between windows (as a copy arrives from the rank that owns it,
+// computed on another cell grid) replace the particles' own and their predictions stand; the
+// trajectory stays the brute-force reference's. A nudge into another cell is refused and
+// changes nothing; an empty slot is refused too.
+TEST(EventDriven, NudgedStatesKeepTrajectory)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    const SystemSpec s = spec_of(140, dim, 0.25, 521 + dim);
+    Reference ref = make_system(s, LawParams::walton(0.85, 0.3, 0.5));
+    ref.gravity = dim == 2 ? Vec3(0.2, -0.7, 0.0) : Vec3(0.1, -0.3, -0.6);
+    const double dt = 0.6 * mean_free_time(ref);
+    const int nwin = 10;
+    CoreRun run(ref);
+    EventDriven &ed = run.ed;
+    ed.remove(s.n - 1);    // (an empty slot)
+    ref.p.pop_back();
+    {
+      double x[3], v[3], om[3];
+      ref.p[0].x.to(x);
+      ref.p[0].v.to(v);
+      ref.p[0].w.to(om);
+      EXPECT_THROW(ed.nudge(0, x, v, om), std::logic_error);
+    }
+    ed.start();
+    long nudged = 0, refused = 0;
+    // a value off by a few units in its last place, as other rounding leaves it
+    auto reround = [](double x, int k) { return x == 0.0 ? 0.0 : x * (1.0 + (k % 7 - 3) * 0x1p-52); };
+    for (int w = 0; w < nwin; w++) {
+      if (w > 0) {
+        for (int e = 0; e < s.n - 1; e++) {
+          if ((e + w) % 3 != 0) continue;
+          double x[3], v[3], om[3];
+          ed.state(e, 0.0, x, v, om);
+          for (int d = 0; d < 3; d++) {
+            x[d] = reround(x[d], e + d + w);
+            v[d] = reround(v[d], 2 * e + d + w);
+            om[d] = reround(om[d], 3 * e + d + w);
+          }
+          if (ed.nudge(e, x, v, om)) {
+            nudged++;
+            double x2[3], v2[3], w2[3];
+            ed.state(e, 0.0, x2, v2, w2);
+            for (int d = 0; d < dim; d++) {
+              EXPECT_EQ(x2[d], x[d]);
+              EXPECT_EQ(v2[d], v[d]);
+            }
+          } else {
+            refused++;
+          }
+        }
+        // a position in another cell: refused, nothing changes
+        double x[3], v[3], om[3], x2[3], v2[3], w2[3];
+        ed.state(w, 0.0, x, v, om);
+        const double x0 = x[0];
+        x[0] += 0.37 * ref.L[0];
+        EXPECT_FALSE(ed.nudge(w, x, v, om));
+        ed.state(w, 0.0, x2, v2, w2);
+        EXPECT_EQ(x2[0], x0);
+        EXPECT_FALSE(ed.nudge(s.n - 1, x, v, om));
+        EXPECT_FALSE(ed.present(s.n - 1));
+      }
+      run.total.add(ed.advance_to(dt));
+      ed.rebase(dt);
+    }
+    ref.run_until(nwin * dt);
+    EXPECT_GT(nudged, 300);
+    EXPECT_LT(refused, nudged / 10);    // (only particles within rounding of a cell border)
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    for (size_t i = 0; i < ref.p.size(); i++) {
+      EXPECT_LT(norm(ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+      EXPECT_LT(norm(ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+      EXPECT_LT(ref.p[i].a * norm(ed.particle((int) i).w - ref.p[i].w), 1e-9);
+    }
+  }
+}
+
 TEST(EventDriven, EmptySlotsFilledAndEmptiedEqualFreshStart)
 {
   for (int dim = 2; dim <= 3; dim++) {
@@ -735,6 +811,92 @@ TEST(EventDriven, RecordsOnlyFlaggedParticlesEvents)
   EXPECT_EQ(some.total.collisions, all.total.collisions);
   for (int e = 0; e < all.ed.size(); e++)
     EXPECT_EQ(norm(all.ed.position(e, dt) - some.ed.position(e, dt)), 0.0);
+}
+
+// track_fast(): the fast list holds exactly the velocity changes (pair and wall collisions,
+// kicks) that leave a particle at or above the threshold, in time order; so every particle
+// not listed stays within path_bound() of its start (checked against its positions at many
+// times of the window); off by default and after track_fast(INF).
+TEST(EventDriven, FastListBoundsPaths)
+{
+  SystemSpec s = spec_of(400, 2, 0.3, 29);
+  Reference ref = make_system(s, LawParams::rough(0.9, 0.2));
+  ref.periodic[1] = false;
+  ref.gravity = Vec3(0.0, -0.4, 0.0);
+  ref.walls.push_back({1, -1, ref.lo.y - 0.6, LawParams::rough(0.8, -1.0)});
+  ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, LawParams::rough(0.8, -1.0)});
+  const double dt = 3.0 * mean_free_time(ref);
+  const int n = (int) ref.p.size(), pieces = 40;
+  CoreRun run(ref);
+  EventDriven &ed = run.ed;
+  ed.start();
+  EXPECT_TRUE(ed.fast_list().empty());
+  // threshold: the squared speed that 1 particle in 10 exceeds at the start
+  std::vector<double> s0(n);
+  for (int e = 0; e < n; e++) s0[e] = norm2(ed.velocity(e, 0.0));
+  std::vector<double> sorted = s0;
+  std::sort(sorted.begin(), sorted.end());
+  const double s2 = sorted[n * 9 / 10];
+  const double tk = 16 * dt / pieces;    // a kick of every particle, at a piece boundary
+  auto dv = [](int e) { return Vec3(test_kick(e, 1, 0.3).x, test_kick(e, 1, 0.3).y, 0.0); };
+  std::vector<EDEvent> h;
+  ed.record_events(&h);
+  ed.track_fast(s2);
+  // positions at many times of the window (advance_to in pieces keeps the trajectory)
+  std::vector<Vec3> x0(n);
+  for (int e = 0; e < n; e++) x0[e] = ed.position(e, 0.0);
+  std::vector<double> far(n, 0.0), kicked2(n);
+  for (int k = 1; k <= pieces; k++) {
+    run.total.add(ed.advance_to(k * dt / pieces));
+    for (int e = 0; e < n; e++) far[e] = std::max(far[e], norm(ed.position(e, k * dt / pieces) - x0[e]));
+    if (k == 16) {    // (the next advance_to kicks at tk)
+      for (int e = 0; e < n; e++) kicked2[e] = norm2(ed.velocity(e, tk) + dv(e));
+      ed.set_global_events({tk}, [&](int) {
+        for (int e = 0; e < n; e++) ed.particle(e).v += dv(e);
+      });
+    }
+  }
+  ASSERT_GT(run.total.wall_collisions, 0);
+  ASSERT_EQ(run.total.global_events, 1);
+  // the list: the collisions before the kick, the kick, the collisions after it
+  std::vector<std::pair<int, double>> before, after;
+  for (const EDEvent &e : h) {
+    auto &to = e.t < tk ? before : after;
+    if (norm2(e.vi) >= s2) to.push_back({e.i, norm2(e.vi)});
+    if (e.j >= 0 && norm2(e.vj) >= s2) to.push_back({e.j, norm2(e.vj)});
+  }
+  const auto &fl = ed.fast_list();
+  ASSERT_GT(before.size(), 10u);
+  ASSERT_GT(after.size(), 10u);
+  ASSERT_GE(fl.size(), before.size() + after.size());
+  for (size_t k = 0; k < before.size(); k++) EXPECT_EQ(fl[k], before[k]);
+  const size_t na = fl.size() - after.size();
+  for (size_t k = 0; k < after.size(); k++) EXPECT_EQ(fl[na + k], after[k]);
+  std::vector<int> listed(n, 0), by_kick(n, 0);
+  for (const auto &f : fl) listed[f.first] = 1;
+  for (size_t k = before.size(); k < na; k++) {
+    EXPECT_EQ(by_kick[fl[k].first]++, 0) << "the kick lists a particle once";
+    EXPECT_NEAR(fl[k].second, kicked2[fl[k].first], 1e-12 * s2);
+  }
+  long nkick = 0;
+  for (int e = 0; e < n; e++) {
+    if (kicked2[e] > s2 * (1 + 1e-9)) EXPECT_EQ(by_kick[e], 1) << "particle " << e;
+    if (kicked2[e] < s2 * (1 - 1e-9)) EXPECT_EQ(by_kick[e], 0) << "particle " << e;
+    nkick += by_kick[e];
+  }
+  EXPECT_GT(nkick, 10);
+  // a particle never listed stays within the bound from max(its start, the threshold)
+  long unlisted = 0;
+  for (int e = 0; e < n; e++) {
+    if (listed[e]) continue;
+    unlisted++;
+    const double bound = dt * (std::sqrt(std::max(s0[e], s2)) + 0.5 * dt * norm(ref.gravity));
+    EXPECT_DOUBLE_EQ(ed.path_bound(std::max(s0[e], s2), dt), bound);
+    EXPECT_LE(far[e], bound) << "particle " << e;
+  }
+  EXPECT_GT(unlisted, n / 2);
+  ed.track_fast(INF);
+  EXPECT_TRUE(ed.fast_list().empty());
 }
 
 TEST(Prediction, PairContactTime)

@@ -114,6 +114,25 @@ def test_chain_across_boundary_is_detected_and_redone(tmp_path):
     assert np.abs(a[:, 3] - u[:, 3]).max() > 0.5
 
 
+def test_atom_faster_than_the_bound_is_guarded(tmp_path):
+    """A collision within the step makes disc A faster than the speed bound D / dt the shell was
+    built from (D = reach v_max dt = 3.6, shell W = 2 D + 1 = 8.2); A starts 8.4 from the other
+    rank's atom, outside that rank's region, so it was not sent there. The guard must see
+    that A's path (up to 3 sqrt 2 = 4.24) could have closed the gap (W + path - D = 8.84)
+    and redo the window; the result is the serial one."""
+    w = str(tmp_path)
+    lmp(w, 1, scene="boost", steps=1, out="s1", log="log1")
+    lmp(w, 2, scene="boost", steps=1, out="s2", log="log2")
+    a, b = state(os.path.join(w, "s1")), state(os.path.join(w, "s2"))
+    d = lammpslog.read_thermo(os.path.join(w, "log2"))
+    assert d["f_ed[14]"][-1] == 1, "the guard did not fail the window"
+    assert d["f_ed[15]"][-1] == 1, "the window was not redone"
+    assert np.abs(a - b).max() < 1e-12
+    # the collision happened: A leaves at (1, 1), B rests, the third disc never moved
+    assert a[0, 3:5] == pytest.approx([1.0, 1.0]) and np.abs(a[1, 3:5]).max() < 1e-12
+    assert np.abs(a[2, 3:5]).max() == 0.0
+
+
 def test_long_runs_agree_statistically(tmp_path):
     """Driven steady state on 1 and 2 ranks: the trajectories part (chaos) but T_tr, T_rot and
     the collision rate agree within their statistical errors."""

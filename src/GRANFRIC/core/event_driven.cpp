@@ -116,16 +116,9 @@ void EventDriven::advance(int i, double t)
   p.t = t;
 }
 
-double EventDriven::path(int e, double t) const
-{
-  // between velocity changes gravity changes the speed by at most |g| t
-  const double s = std::sqrt(path_speed2(e));
-  return t * (s + 0.5 * t * norm(opt.gravity));
-}
-
 void EventDriven::resize(int n)
 {
-  paths.clear();
+  fast.clear();
   acct = EDAccounting();
   H.assign(n, Hot());
   C.assign(n, Cold());
@@ -264,12 +257,21 @@ void EventDriven::place(int i)
       img[i].k[d] = 0;
       continue;
     }
-    long u = (long) std::floor((p.x[d] - opt.lo[d]) / cw[d]);
-    if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
-    long k = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
-    img[i].k[d] = (int) k;
-    s.c[d] = (int16_t) (u - k * nc[d]);
+    int c, k;
+    locate(d, p.x[d], c, k);
+    img[i].k[d] = k;
+    s.c[d] = (int16_t) c;
   }
+}
+
+// cell c (0 .. nc-1) and periodic image k of coordinate xd in dimension d
+void EventDriven::locate(int d, double xd, int &c, int &k) const
+{
+  long u = (long) std::floor((xd - opt.lo[d]) / cw[d]);
+  if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
+  const long kk = u >= 0 ? u / nc[d] : -((-u + nc[d] - 1) / nc[d]);
+  k = (int) kk;
+  c = (int) (u - kk * nc[d]);
 }
 
 void EventDriven::cell_insert(int i)
@@ -867,7 +869,7 @@ void EventDriven::collide_wall(int i)
   h.v = c.v1;
   p.w = c.w1;
   if (!TL.empty()) TL[i] = t;
-  if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(h.v));
+  if (tracking_fast()) note_speed(i, h.v);
   p.ncoll++;
   p.last_partner = -1;
   if (history && (!record_only || record_only[ext[i]]))
@@ -930,9 +932,9 @@ void EventDriven::collide_pair(int i)
   p.w = c.w1;
   hq.v = c.v2;
   q.w = c.w2;
-  if (!paths.empty()) {
-    paths[ext[i]] = std::max(paths[ext[i]], norm2(hp.v));
-    paths[ext[j]] = std::max(paths[ext[j]], norm2(hq.v));
+  if (tracking_fast()) {
+    note_speed(i, hp.v);
+    note_speed(j, hq.v);
   }
   p.ncoll++;
   q.ncoll++;
@@ -943,7 +945,7 @@ void EventDriven::collide_pair(int i)
     S[j].last_off[d] = -s.coff[d];
   }
   // (without an accounting every collision is booked: the keys, another array, are not read)
-  const bool book = acct.counted.empty() || counted(key(i) <= key(j) ? i : j);
+  const bool book = !acct.counted || counted(key(i) <= key(j) ? i : j);
   if (history && (!record_only || record_only[ext[i]] || record_only[ext[j]]))
     history->push_back({t, ext[i], ext[j], hp.v, p.w, hq.v, q.w});
   const long ni = ++s.ncollisions, nj = ++S[j].ncollisions;
@@ -1077,6 +1079,30 @@ void EventDriven::changed(int e)
   dirty.push_back(e);
 }
 
+bool EventDriven::nudge(int e, const double *x, const double *v, const double *w)
+{
+  const int i = loc[e];
+  Hot &p = H[i];
+  const Sched &s = S[i];
+  if (!started) throw std::logic_error("EventDriven::nudge() before start()");
+  if (s.gone) return false;
+  for (int d = 0; d < opt.dim; d++) {    // the cell (and image) place() would give
+    int c, k;
+    locate(d, x[d], c, k);
+    if (k != img[i].k[d] || c != s.c[d]) return false;
+  }
+  p.x = Vec3(x[0], x[1], x[2]);
+  p.v = Vec3(v[0], v[1], v[2]);
+  p.t = now;
+  Cold &c = C[i];
+  c.w = Vec3(w[0], w[1], w[2]);
+  if (opt.dim == 2) {
+    p.v.z = 0.0;
+    c.w.x = c.w.y = 0.0;
+  }
+  return true;
+}
+
 void EventDriven::refresh()
 {
   for (int e : dirty) {
@@ -1159,7 +1185,7 @@ void EventDriven::global_event(int k)
       h.v.z = 0.0;
       p.w.x = p.w.y = 0.0;
     }
-    if (!paths.empty()) paths[ext[i]] = std::max(paths[ext[i]], norm2(h.v));
+    if (tracking_fast()) note_speed(i, h.v);
   }
   predict_all();
   std::vector<double> times(n);

@@ -125,10 +125,12 @@ struct EDEvent {
 // plus copies of its neighbours' atoms): key = a global identity per particle (external index;
 // also seeds the thermal walls' random numbers), counted = the particles whose events this
 // window books. A pair collision is booked where its particle with the smaller key is counted,
-// so every collision is booked exactly once over all ranks. Empty: everything, keys = indices.
+// so every collision is booked exactly once over all ranks. Both are arrays by external index
+// that the caller keeps alive and unchanged while the core uses them; none: everything is
+// counted, keys = indices.
 struct EDAccounting {
-  std::vector<long> key;
-  std::vector<uint8_t> counted;
+  const long *key = nullptr;
+  const uint8_t *counted = nullptr;
 };
 
 // thrown when a particle exceeds the per-window collision cap (inelastic collapse)
@@ -186,8 +188,15 @@ class EventDriven {
   //                every neighbour (after all changes, so changed neighbours see each other).
   // The result is the exact trajectory of the changed system, as a new start() would give,
   // at the cost of the changed particles only.
+  //   nudge(e, x, v, w)   x, v and w (3 values each, at window time now) are particle e's
+  //                own trajectory again, computed with other rounding (by another rank, on
+  //                another cell grid): they replace its state and its predictions stand, as the
+  //                predictions of a particle stand when a cell crossing re-rounds its state.
+  //                Only if the new position lies in the particle's cell (else nothing changes
+  //                and it returns false: use changed()). The caller bounds the difference.
   void remove(int e);
   void changed(int e);
+  bool nudge(int e, const double *x, const double *v, const double *w);
   bool present(int e) const { return !S[loc[e]].gone; }
   // the largest radius the cell grid of the last start() admits
   double cell_radius() const { return cell_amax; }
@@ -198,9 +207,7 @@ class EventDriven {
   // kinetic energy change is booked as injected, and every prediction is made afresh.
   void set_global_events(const std::vector<double> &times, std::function<void(int)> apply);
 
-  // optional per-window records: every collision into *h; an upper bound of every particle's
-  // path length from window time 0 to t (from the largest speed it had at time 0 or right
-  // after a velocity change, plus what gravity adds; track_paths(true) after start())
+  // optional per-window records: every collision into *h
   // with `only` (a flag per particle, external index, kept alive by the caller): only the
   // events of flagged particles (pair collisions with at least one flagged partner)
   void record_events(std::vector<EDEvent> *h, const uint8_t *only = nullptr)
@@ -208,15 +215,23 @@ class EventDriven {
     history = h;
     record_only = only;
   }
-  void track_paths(bool on)
+  // Fast particles, for a bound on how far particles travel in a window (the guard of domain
+  // windows): after track_fast(s2), every velocity change (collision, wall, kick) that leaves
+  // a particle with a squared speed of s2 or more lists it with that squared speed, in the
+  // order they happen (a particle may be listed more than once). A particle never listed had,
+  // right after each of its velocity changes in the window, a squared speed below s2; with its
+  // squared speed s0 at window time 0 its path up to window time t is then at most
+  // path_bound(max(s0, s2), t). track_fast(INF): off (the default).
+  void track_fast(double s2)
   {
-    paths.resize(on ? H.size() : 0);    // (every entry is set below)
-    for (size_t e = 0; e < paths.size(); e++) paths[e] = norm2(vel(loc[e], now));
+    fast_s2 = s2;
+    fast.clear();
   }
-  double path(int e, double t) const;
-  // the squared speed path() starts from (its largest since track_paths())
-  double path_speed2(int e) const { return paths.empty() ? norm2(H[loc[e]].v) : paths[e]; }
-  void set_accounting(EDAccounting a) { acct = std::move(a); }
+  const std::vector<std::pair<int, double>> &fast_list() const { return fast; }
+  // the path length bound from a largest squared speed s2 over [0, t]: between velocity
+  // changes gravity changes the speed by at most |g| t
+  double path_bound(double s2, double t) const { return t * (std::sqrt(s2) + 0.5 * t * norm(opt.gravity)); }
+  void set_accounting(EDAccounting a) { acct = a; }
 
   // Pairs that overlap by more than tol times their contact distance at the current time
   // (after start()), counted once (where the partner with the smaller key is counted); the
@@ -232,8 +247,7 @@ class EventDriven {
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
         head.capacity() * sizeof(int) + queue.memory_bytes() +
-        paths.capacity() * sizeof(double) + acct.key.capacity() * sizeof(long) +
-        acct.counted.capacity() + gtimes.capacity() * sizeof(double);
+        fast.capacity() * sizeof(fast[0]) + gtimes.capacity() * sizeof(double);
   }
 
   // absolute time of window time 0 (the phase of vibrating walls); rebase() advances it
@@ -341,10 +355,17 @@ class EventDriven {
   double clock = 0.0;
   std::vector<EDEvent> *history = nullptr;
   const uint8_t *record_only = nullptr;
-  std::vector<double> paths;             // largest squared speed, by external index
+  double fast_s2 = INF;                  // track_fast(): the threshold, and who reached it
+  std::vector<std::pair<int, double>> fast;
+  bool tracking_fast() const { return fast_s2 != INF; }
+  void note_speed(int i, const Vec3 &v)    // (only while tracking_fast())
+  {
+    const double s2 = norm2(v);
+    if (s2 >= fast_s2) fast.emplace_back(ext[i], s2);
+  }
   EDAccounting acct;
-  bool counted(int i) const { return acct.counted.empty() || acct.counted[ext[i]]; }
-  long key(int i) const { return acct.key.empty() ? (long) ext[i] : acct.key[ext[i]]; }
+  bool counted(int i) const { return !acct.counted || acct.counted[ext[i]]; }
+  long key(int i) const { return acct.key ? acct.key[ext[i]] : (long) ext[i]; }
   std::vector<double> gtimes;            // pending global events
   std::function<void(int)> gapply;
   void global_event(int k);
@@ -392,6 +413,7 @@ class EventDriven {
     const Hot &p = H[i];
     return p.v + (t - p.t) * opt.gravity;
   }
+  void locate(int d, double xd, int &c, int &k) const;
   int cell_of(int i) const
   {
     const int16_t *c = S[i].c;
