@@ -635,7 +635,9 @@ double FixHardsphereED::memory_usage()
       bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
       bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags) + bytes(dom_slot) +
       bytes(dom_free) + bytes(lslot) + bytes(sowned) + bytes(sowned_prev) + bytes(sseen) +
-      bytes(dom_sent) + bytes(dom_inslot) + bytes(dom_evlist) + bytes(dom_cslot) + bytes(dom_watch);
+      bytes(dom_sent) + bytes(dom_inslot) + bytes(dom_evlist) + bytes(dom_cslot) + bytes(dom_watch) +
+      bytes(dom_gsrc) + bytes(dom_start) + bytes(dom_fill) + bytes(dom_gshift) + bytes(dom_tstar) +
+      bytes(dom_pub);
 }
 
 void FixHardsphereED::grow_arrays(int nmax)

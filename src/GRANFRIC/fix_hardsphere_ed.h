@@ -159,10 +159,14 @@ class FixHardsphereED : public Fix {
   std::vector<int> lslot;                       // slot of each owned atom (this window)
   std::vector<uint8_t> sowned, sowned_prev;     // slot owned in this / the last window
   std::vector<int> sseen;                       // slot matched in this window (stamp)
-  // scratch of every window, kept to spare their clearing: atoms sent, the slot of each
-  // atom, the events of each slot
+  // scratch of every window, kept to spare their allocation and clearing: atoms sent, the
+  // slot of each atom, the copies' slots, their records in drecv and image shifts, the events
+  // of each slot (evlist from start), influence times, where each copy's history was received
   std::vector<char> dom_sent;
-  std::vector<int> dom_inslot, dom_evlist, dom_cslot;    // (dom_cslot: the copies' slots)
+  std::vector<int> dom_inslot, dom_evlist, dom_cslot, dom_gsrc, dom_start, dom_fill;
+  std::vector<int> dom_gshift;                  // (3 per copy)
+  std::vector<double> dom_tstar;
+  std::vector<long> dom_pub;
   std::vector<uint8_t> dom_watch;               // slots whose events are recorded
   int dom_stamp = 0;
   std::vector<tagint> kick_tags;

@@ -34,8 +34,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <type_traits>
 #include <utility>
-#include <unordered_map>
 
 using namespace LAMMPS_NS;
 using granfric::EDEvent;
@@ -66,6 +66,17 @@ bool image_in(double x, double lo, double hi, bool periodic, double L, int &s)
   }
   return false;
 }
+double dot3(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// squared speed of the core's motion (x-y in 2d)
+template <int DIM>
+double speed2(const double *v)
+{
+  return DIM == 2 ? v[0] * v[0] + v[1] * v[1] : dot3(v, v);
+}
 }    // namespace
 
 bool FixHardsphereED::window_domain(double t0, double dt)
@@ -90,17 +101,24 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     mybb[3 + d] = d < dim ? -INF : 0.0;
   }
   long maxtag = 0;
-  for (int i = 0; i < nlocal; i++) {
-    const double w2 = omega[i][0] * omega[i][0] + omega[i][1] * omega[i][1] + omega[i][2] * omega[i][2];
-    const double v2 = v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2];
-    mx[0] = std::max(mx[0], v2 + q * radius[i] * radius[i] * w2);
-    mx[1] = std::max(mx[1], radius[i]);
-    for (int d = 0; d < dim; d++) {
-      mybb[d] = std::min(mybb[d], x[i][d]);
-      mybb[3 + d] = std::max(mybb[3 + d], x[i][d]);
+  // (in 2d the core moves in x-y and spins about z only: the other components play no part)
+  auto bound_pass = [&](auto dims) {
+    constexpr int DIM = decltype(dims)::value;
+    for (int i = 0; i < nlocal; i++) {
+      const double w2 = DIM == 2 ? omega[i][2] * omega[i][2] : dot3(omega[i], omega[i]);
+      mx[0] = std::max(mx[0], speed2<DIM>(v[i]) + q * radius[i] * radius[i] * w2);
+      mx[1] = std::max(mx[1], radius[i]);
+      for (int d = 0; d < DIM; d++) {
+        mybb[d] = std::min(mybb[d], x[i][d]);
+        mybb[3 + d] = std::max(mybb[3 + d], x[i][d]);
+      }
+      maxtag = std::max(maxtag, (long) tag[i]);
     }
-    maxtag = std::max(maxtag, (long) tag[i]);
-  }
+  };
+  if (dim == 2)
+    bound_pass(std::integral_constant<int, 2>());
+  else
+    bound_pass(std::integral_constant<int, 3>());
   mx[0] = std::sqrt(mx[0]);    // (the root of the largest: the largest root, exactly)
   MPI_Allreduce(mx, gmx, 2, MPI_DOUBLE, MPI_MAX, world);
   const granfric::EDOptions base = core_options();
@@ -175,29 +193,33 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   };
   dom_sent.resize(nlocal);    // (every entry is set below: no clearing)
   std::vector<char> &sent = dom_sent;
-  dsend.clear();
   int s3[3];
+  size_t nsend = 0;
   for (int i = 0; i < nlocal; i++) {
     const bool send = to_send(x[i]);
     sent[i] = send;
-    if (!send) continue;
-    const size_t o = dsend.size();
-    dsend.resize(o + NPACK);
-    pack_atom(i, t0, &dsend[o]);
+    nsend += send;
   }
+  dsend.resize(nsend * NPACK);    // (every entry is set below)
+  for (int i = 0, o = 0; i < nlocal; i++)
+    if (sent[i]) {
+      pack_atom(i, t0, &dsend[o]);
+      o += NPACK;
+    }
   allgather(dsend, drecv);
 
   // ------------------------------------------------ the copies this rank needs
   const Shell &R = reg[me];
-  std::vector<int> gsrc;    // offset of each ghost's record in drecv
-  std::vector<std::array<int, 3>> gshift;
+  std::vector<int> &gsrc = dom_gsrc, &gshift = dom_gshift;    // each copy's record in drecv, shift
+  gsrc.clear();
+  gshift.clear();
   if (nlocal > 0)
     for (int p = 0; p < nprocs; p++) {
       if (p == me) continue;
       for (int k = displs[p]; k < displs[p] + counts[p]; k += NPACK) {
         if (!inside(R, &drecv[k + 1], s3)) continue;
         gsrc.push_back(k);
-        gshift.push_back({s3[0], s3[1], s3[2]});
+        gshift.insert(gshift.end(), s3, s3 + 3);
       }
     }
   const int nghost = (int) gsrc.size();
@@ -206,10 +228,12 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // The core of the last window is kept when its cell grid still covers this window's region
   // and nothing else changed; its slots are matched to this window's atoms by ID. Each atom is
   // taken as it arrives (its owner's state, or LAMMPS's for owned atoms); one whose state
-  // differs in any bit from its slot's is predicted afresh (ed.changed), slots of atoms no
-  // longer here are emptied, new atoms fill empty slots. Owned atoms arrive as this rank left
-  // them, so mostly only the copies are predicted again. The result is the same exact
-  // trajectory as a fresh start of the same system.
+  // differs from its slot's by more than rounding is predicted afresh (ed.changed), one that
+  // differs by rounding only takes the state and keeps its predictions (ed.nudge), slots of
+  // atoms no longer here are emptied, new atoms fill empty slots. Owned atoms arrive as this
+  // rank left them, so mostly only the copies that lacked a partner, or entered the region,
+  // are predicted again. The result is the exact trajectory of the same system, as a fresh
+  // start would give it, up to rounding.
   for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k]);    // (the largest atom ID)
   granfric::EDOptions o = base;
   bool keep = dom_valid && gmx[1] <= ed.cell_radius() && nlocal + nghost > 0;
@@ -250,7 +274,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       return;
     }
     memcpy(in, &drecv[gsrc[a - nlocal]], NPACK * sizeof(double));
-    const auto &sh = gshift[a - nlocal];
+    const int *sh = &gshift[3 * (a - nlocal)];
     for (int d = 0; d < 3; d++) in[1 + d] += sh[d] * domain->prd[d];
   };
   auto set_state = [&](granfric::EDParticle p, const double *in) {
@@ -467,9 +491,12 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // change came near it (the threshold has a margin that leaves the borderline ones to the
   // exact bound); an atom never listed is bounded by its speed at window time 0 (in LAMMPS's
   // arrays until the write-back below) or the threshold.
-  for (int i = 0; i < nlocal && !fail; i++) {
-    const double s2 = v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2];
-    if (s2 >= s2lim) guard(i, s2);
+  if (dim == 2) {
+    for (int i = 0; i < nlocal && !fail; i++)
+      if (speed2<2>(v[i]) >= s2lim) guard(i, speed2<2>(v[i]));
+  } else {
+    for (int i = 0; i < nlocal && !fail; i++)
+      if (speed2<3>(v[i]) >= s2lim) guard(i, speed2<3>(v[i]));
   }
   if (!ed.fast_list().empty() && !fail) {
     std::vector<int> atom_of(n, -1);
@@ -480,7 +507,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   ed.track_fast(INF);
 
   // ------------------------------------------------ influence times t* of the ghosts
-  std::vector<double> tstar(n);    // (the slots of history events: owned atoms and copies)
+  std::vector<double> &tstar = dom_tstar;    // (set below for owned atoms and copies)
+  tstar.resize(n);
   for (int e = 0; e < n; e++) tstar[e] = sowned[e] ? INF : -INF;
   for (auto it = history.rbegin(); it != history.rend(); ++it) {
     if (it->j < 0) continue;
@@ -490,14 +518,16 @@ bool FixHardsphereED::window_domain(double t0, double dt)
 
   // ------------------------------------------------ publish the histories of sent atoms
   // events per particle (pair and wall collisions, in time order)
-  std::vector<int> start(n + 1, 0);
+  std::vector<int> &start = dom_start;
+  start.assign(n + 1, 0);
   for (const auto &h : history) {
     start[h.i + 1]++;
     if (h.j >= 0) start[h.j + 1]++;
   }
   for (int e = 0; e < n; e++) start[e + 1] += start[e];
   dom_evlist.resize(start[n]);    // (every entry is set below)
-  std::vector<int> &evlist = dom_evlist, fill(start.begin(), start.end() - 1);
+  std::vector<int> &evlist = dom_evlist, &fill = dom_fill;
+  fill.assign(start.begin(), start.end() - 1);
   for (int m = 0; m < (int) history.size(); m++) {
     const auto &h = history[m];
     evlist[fill[h.i]++] = m;
@@ -513,25 +543,32 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     vv.to(out + 2);
     ww.to(out + 5);
   };
-  hsend.clear();
-  for (int i = 0; i < nlocal; i++) {
+  size_t hsize = 0;
+  for (int i = 0; i < nlocal; i++)
+    if (sent[i]) hsize += 2 + (size_t) (start[lslot[i] + 1] - start[lslot[i]]) * NEV;
+  hsend.resize(hsize);    // (every entry is set below)
+  for (int i = 0, o0 = 0; i < nlocal; i++) {
     if (!sent[i]) continue;
     const int e = lslot[i];
     const int k = start[e + 1] - start[e];
-    const size_t o0 = hsend.size();
-    hsend.resize(o0 + 2 + (size_t) k * NEV);
     hsend[o0] = (double) gtag[e];
     hsend[o0 + 1] = (double) k;
     for (int m = 0; m < k; m++) event_of(e, evlist[start[e] + m], &hsend[o0 + 2 + (size_t) m * NEV]);
+    o0 += 2 + k * NEV;
   }
   allgather(hsend, hrecv);
 
   // ------------------------------------------------ compare where it mattered
-  std::unordered_map<long, size_t> published;
+  // where each copy's published history starts in hrecv (-1: none; every copy's owner sent it)
+  std::vector<long> &published = dom_pub;
+  published.resize(n);
+  for (int e : cslot) published[e] = -1;
   for (int p = 0; p < nprocs; p++) {
     if (p == me) continue;
     for (size_t k = displs[p]; k < (size_t) (displs[p] + counts[p]);) {
-      published[(long) hrecv[k]] = k;
+      const long t = (long) hrecv[k];
+      const int sl = t < (long) dom_slot.size() ? dom_slot[t] : -1;
+      if (sl >= 0 && !sowned[sl]) published[sl] = (long) k;    // (a copy here)
       k += 2 + (size_t) hrecv[k + 1] * NEV;
     }
   }
@@ -549,13 +586,13 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   for (size_t c = 0; c < cslot.size() && !fail; c++) {
     const int e = cslot[c];
     if (tstar[e] == -INF) continue;
-    const auto it = published.find(gtag[e]);
-    if (it == published.end()) {
+    const long k = published[e];
+    if (k < 0) {
       conflicts++;    // cannot happen: every ghost was sent, so its history was published
       continue;
     }
-    const double *theirs = &hrecv[it->second + 2];
-    const int ntheirs = (int) hrecv[it->second + 1];
+    const double *theirs = &hrecv[k + 2];
+    const int ntheirs = (int) hrecv[k + 1];
     int a = 0, b = 0;
     bool same = true;
     const double limit = tstar[e] + ttol;

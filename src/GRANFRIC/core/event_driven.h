@@ -225,6 +225,7 @@ class EventDriven {
   void track_fast(double s2)
   {
     fast_s2 = s2;
+    fast_on = s2 != INF;
     fast.clear();
   }
   const std::vector<std::pair<int, double>> &fast_list() const { return fast; }
@@ -356,8 +357,9 @@ class EventDriven {
   std::vector<EDEvent> *history = nullptr;
   const uint8_t *record_only = nullptr;
   double fast_s2 = INF;                  // track_fast(): the threshold, and who reached it
+  bool fast_on = false;
   std::vector<std::pair<int, double>> fast;
-  bool tracking_fast() const { return fast_s2 != INF; }
+  bool tracking_fast() const { return fast_on; }
   void note_speed(int i, const Vec3 &v)    // (only while tracking_fast())
   {
     const double s2 = norm2(v);
