@@ -200,7 +200,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     nsend += send;
   }
   dsend.resize(nsend * NPACK);    // (every entry is set below)
-  for (int i = 0, o = 0; i < nlocal; i++)
+  for (size_t i = 0, o = 0; i < (size_t) nlocal; i++)
     if (sent[i]) {
       pack_atom(i, t0, &dsend[o]);
       o += NPACK;
@@ -546,7 +546,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   for (int i = 0; i < nlocal; i++)
     if (sent[i]) hsize += 2 + (size_t) (start[lslot[i] + 1] - start[lslot[i]]) * NEV;
   hsend.resize(hsize);    // (every entry is set below)
-  for (int i = 0, o0 = 0; i < nlocal; i++) {
+  for (size_t i = 0, o0 = 0; i < (size_t) nlocal; i++) {
     if (!sent[i]) continue;
     const int e = lslot[i];
     const int k = start[e + 1] - start[e];
