@@ -2,6 +2,7 @@
 // for 2D discs / 3D spheres at a given fraction and N, windows of dt mean free times, memory per
 // particle. Prints its figures; it is not a test.
 //   bench_core [dim] [N] [fraction] [dt_in_mean_free_times] [collisions_per_particle]
+//              [cell width in diameters, 0: the core's automatic choice]
 #include "core/event_driven.h"
 
 #include <chrono>
@@ -19,6 +20,7 @@ int main(int argc, char **argv)
   const double phi = argc > 3 ? atof(argv[3]) : 0.3;
   const double dt_mft = argc > 4 ? atof(argv[4]) : 1.0;
   const double cpp = argc > 5 ? atof(argv[5]) : 20.0;
+  const double cell = argc > 6 ? atof(argv[6]) : 0.0;
 
   // lattice start, equal particles of diameter 1 and mass 1, Maxwellian velocities, T = 1
   const double a = 0.5;
@@ -28,6 +30,7 @@ int main(int argc, char **argv)
   const double h = side / m;
   EDOptions o;
   o.dim = dim;
+  o.cell_width = cell;    // (diameter 1)
   for (int d = 0; d < 3; d++) {
     o.lo[d] = 0.0;
     o.hi[d] = (d < dim) ? side : 1.0;
@@ -72,9 +75,10 @@ int main(int argc, char **argv)
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double bytes = (double) ed.memory_bytes() / N;
-  std::printf("dim %d N %ld fraction %.3f dt %.3g mft | collisions %ld crossings/collision %.3f "
-              "windows %ld | %.4g s | %.4g collisions/s | core memory %.0f B/particle\n",
-              dim, N, phi, dt_mft, s.collisions, (double) s.crossings / s.collisions, windows, secs,
-              s.collisions / secs, bytes);
+  std::printf("dim %d N %ld fraction %.3f dt %.3g mft | cells %.3g wide | collisions %ld "
+              "crossings/collision %.3f windows %ld | %.4g s | %.4g collisions/s | core memory %.0f "
+              "B/particle\n",
+              dim, N, phi, dt_mft, ed.cell_size(), s.collisions, (double) s.crossings / s.collisions,
+              windows, secs, s.collisions / secs, bytes);
   return 0;
 }

@@ -2,7 +2,12 @@
 mean-field theory where it is closed form: mu = inf (constant tangential restitution, model A):
 R = B/C (the rotational equation has no driving) and T_tr^3/2 = H_dr / (G (A - B R)), with
 H_dr = f_dr m v_dr^2 (1 - 1/N) (kicks keep the momentum zero). Dilute (fraction 0.05, N = 4096).
-Measured: R within 1 %, T_tr within 0.5 %, both inside the block standard errors."""
+Measured at r = 0.95, rt = 0.4 over 16 runs of this length (seeds 11-17 and 4321, each with the
+cell grids of 2026-12-02 and of 2026-12-03, which give other rounding and so other chaotic
+trajectories): T_tr +0.4 %, R -2.3 +- 0.3 % against model A, and a run's R scatters by 1 %. The
+R offset is the mean field's own error (it assumes homogeneity and molecular chaos; Herbst et
+al. relate the remaining deviations to these), so R is held to 5 %, the accuracy documented for
+the mean field at this fraction (doc/choosing_a_method.rst), and T_tr to 3 %."""
 import math
 
 import pytest
@@ -21,7 +26,7 @@ def test_driven_steady_state_equals_model_A(tmp_path, r, rt):
     T = (H / (G * (c.A - c.B * R))) ** (2 / 3)
     assert s["Ttr"] == pytest.approx(T, rel=0.03)
     if R > 0:
-        assert s["R"] == pytest.approx(R, rel=0.03)
+        assert s["R"] == pytest.approx(R, rel=0.05)
     else:
         assert s["R"] == 0.0
     # the energy books close: injected - dissipated = kinetic energy now - at t = 0 (to the 10

@@ -86,6 +86,7 @@ bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<La
   if (o.dim != opt.dim || nt != ntypes || !same_laws(table, laws) ||
       o.gravity.x != opt.gravity.x || o.gravity.y != opt.gravity.y || o.gravity.z != opt.gravity.z ||
       o.tc != opt.tc || o.max_collisions != opt.max_collisions || o.gamma_bins != opt.gamma_bins ||
+      o.cell_width != opt.cell_width ||
       o.walls.size() != opt.walls.size() ||
       shape_table(o, nt) != qt)
     return false;
@@ -213,6 +214,22 @@ void EventDriven::setup_cells()
   for (size_t i = 0; i < H.size(); i++)
     if (!S[i].gone) amax = std::max(amax, H[i].a);
   const double sigma = 2.0 * amax * (1.0 + 1e-10);
+  // Cell width: at least the largest contact distance. In 2d a dilute system gets wider cells:
+  // a particle then crosses fewer cells per free path, for a few more candidates per scan.
+  // Measured optimum (callgrind, elastic discs, area fractions 0.05-0.3, bench/README.md):
+  // w = 0.52 sigma (n sigma^2)^(-2/3), i.e. sigma from area fraction 0.3 up (there 0.99 sigma),
+  // 3.2 sigma at 0.05.
+  // In 3d the narrowest cells are best at every fraction measured (0.05-0.3).
+  double width = sigma;
+  if (opt.cell_width > 0.0) {
+    width = std::max(sigma, opt.cell_width);
+  } else if (opt.dim == 2 && sigma > 0.0) {
+    long present = 0;
+    for (size_t i = 0; i < H.size(); i++) present += !S[i].gone;
+    const double area = L[0] * L[1];
+    if (present > 0 && area > 0.0)
+      width = std::max(sigma, 0.52 * sigma * std::pow(present / area * sigma * sigma, -2.0 / 3.0));
+  }
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
       nc[d] = 1;
@@ -224,12 +241,13 @@ void EventDriven::setup_cells()
                                   " is smaller than the largest contact distance " +
                                   std::to_string(2.0 * amax));
     // (cell coordinates are 16-bit: a longer box gets wider cells)
-    nc[d] = sigma > 0.0 ? (int) std::min(std::floor(L[d] / sigma), 32767.0) : 1;
+    nc[d] = sigma > 0.0 ? (int) std::min(std::floor(L[d] / width), 32767.0) : 1;
     nc[d] = std::max(1, nc[d]);
     cw[d] = L[d] / nc[d];
   }
-  // bound the number of cells by the number of particles (beyond that cells only cost memory)
-  const long maxcells = std::max<long>(27, 4L * (long) H.size());
+  // bound the number of cells by the number of particles (beyond that cells only cost memory;
+  // a dilute 3d system gains from up to 8 cells per particle, measured)
+  const long maxcells = std::max<long>(27, (opt.dim == 3 ? 8L : 4L) * (long) H.size());
   while ((long) nc[0] * nc[1] * nc[2] > maxcells) {
     int d = 0;
     for (int k = 1; k < opt.dim; k++)

@@ -98,6 +98,9 @@ struct EDOptions {
   // moment of inertia / (m a^2) by particle type (index 0 unused), each in (0, 1]; empty:
   // 0.4 (solid spheres) for every type
   std::vector<double> shape;
+  // > 0: cells at least this wide (never narrower than the largest contact distance); 0: the
+  // automatic width (see setup_cells). For benchmarks of the cell width.
+  double cell_width = 0.0;
 };
 
 struct EDStats {
@@ -200,6 +203,7 @@ class EventDriven {
   bool present(int e) const { return !S[loc[e]].gone; }
   // the largest radius the cell grid of the last start() admits
   double cell_radius() const { return cell_amax; }
+  double cell_size() const { return cw[0]; }    // the cell width in x (after start())
 
   // Instant events that change many particles at once (random kicks): at each of the given
   // window times (ascending, processed before t_end by the next advance_to) every particle is
