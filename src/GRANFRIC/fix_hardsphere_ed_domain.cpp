@@ -235,6 +235,12 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // start would give it, up to rounding.
   for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k]);    // (the largest atom ID)
   granfric::EDOptions o = base;
+  // every rank takes the cell width of the whole system (the same number of cells in a
+  // dimension a rank covers whole, so that copies cross cells where their owners do: fewer
+  // rounding differences between them), not that of its region with its empty margins
+  if (dim == 2 && domain->prd[0] * domain->prd[1] > 0.0)
+    o.cell_width = granfric::EventDriven::auto_cell_width(
+        2, 2.0 * gmx[1] * (1.0 + 1e-10), (double) atom->natoms / (domain->prd[0] * domain->prd[1]));
   bool keep = dom_valid && gmx[1] <= ed.cell_radius() && nlocal + nghost > 0;
   for (int d = 0; d < 3 && keep; d++) {
     keep = R.whole[d] == dom_whole[d];

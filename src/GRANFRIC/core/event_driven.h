@@ -204,6 +204,9 @@ class EventDriven {
   // the largest radius the cell grid of the last start() admits
   double cell_radius() const { return cell_amax; }
   double cell_size() const { return cw[0]; }    // the cell width in x (after start())
+  // the width of cells the core chooses for number density n (EDOptions::cell_width = 0), with
+  // sigma the largest contact distance
+  static double auto_cell_width(int dim, double sigma, double n);
 
   // Instant events that change many particles at once (random kicks): at each of the given
   // window times (ascending, processed before t_end by the next advance_to) every particle is
