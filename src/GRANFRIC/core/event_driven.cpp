@@ -212,7 +212,7 @@ void EventDriven::renumber(const std::vector<int> &order)
 // cells: a particle then crosses fewer cells per free path, for a few more candidates per scan.
 // Measured optimum (callgrind, elastic discs, area fractions 0.05-0.3, bench/cell_width.sh):
 // w = 0.52 sigma (n sigma^2)^(-2/3), i.e. sigma from area fraction 0.3 up (there 0.99 sigma),
-// 3.2 sigma at 0.05. In 3d the narrowest cells were best, or within 2 %, at every fraction measured.
+// 3.3 sigma at 0.05. In 3d the narrowest cells were best, or within 2 %, at every fraction measured.
 double EventDriven::auto_cell_width(int dim, double sigma, double n)
 {
   if (dim != 2 || !(sigma > 0.0) || !(n > 0.0)) return sigma;
