@@ -222,17 +222,18 @@ double EventDriven::auto_cell_width(int dim, double sigma, double n)
 void EventDriven::setup_cells()
 {
   double amax = 0.0;
+  long present = 0;
   for (size_t i = 0; i < H.size(); i++)
-    if (!S[i].gone) amax = std::max(amax, H[i].a);
+    if (!S[i].gone) {
+      amax = std::max(amax, H[i].a);
+      present++;
+    }
   const double sigma = 2.0 * amax * (1.0 + 1e-10);
   double width = sigma;
   if (opt.cell_width > 0.0) {
     width = std::max(sigma, opt.cell_width);
-  } else if (opt.dim == 2) {
-    long present = 0;
-    for (size_t i = 0; i < H.size(); i++) present += !S[i].gone;
-    const double area = L[0] * L[1];
-    if (area > 0.0) width = auto_cell_width(2, sigma, present / area);
+  } else if (opt.dim == 2 && L[0] * L[1] > 0.0) {
+    width = auto_cell_width(2, sigma, present / (L[0] * L[1]));
   }
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
