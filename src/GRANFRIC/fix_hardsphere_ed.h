@@ -159,10 +159,13 @@ class FixHardsphereED : public Fix {
   std::vector<int> lslot;                       // slot of each owned atom (this window)
   std::vector<uint8_t> sowned, sowned_prev;     // slot owned in this / the last window
   std::vector<int> sseen;                       // slot matched in this window (stamp)
-  // scratch of every window, kept to spare their allocation and clearing: atoms sent, the
-  // slot of each atom, the copies' slots, their records in drecv and image shifts, the events
-  // of each slot (evlist from start), influence times, where each copy's history was received
+  // scratch of every window, kept to spare their allocation and clearing: atoms sent (flags
+  // and list), the slot of each atom, the copies' slots, their records in drecv and image
+  // shifts, the watched slots (copies, then sent atoms) and each slot's place among them (-1:
+  // none), the events of each watched slot (evlist from start), influence times, where each
+  // copy's history was received
   std::vector<char> dom_sent;
+  std::vector<int> dom_sendlist, dom_wlist, dom_widx, dom_rm;    // (dom_rm: slots to empty)
   std::vector<int> dom_inslot, dom_evlist, dom_cslot, dom_gsrc, dom_start, dom_fill;
   std::vector<int> dom_gshift;                  // (3 per copy)
   std::vector<double> dom_tstar;

@@ -101,18 +101,32 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   long maxtag = 0;
   // (in 2d the core moves in x-y and spins about z only: the other components play no part)
+  // (LAMMPS keeps x, v and omega contiguous, 3 per atom; the running extremes live in locals,
+  // which the compiler keeps in registers: through the escaping arrays it would reload them)
   auto bound_pass = [&](auto dims) {
     constexpr int DIM = decltype(dims)::value;
+    const double *xa = nlocal > 0 ? x[0] : nullptr, *va = nlocal > 0 ? v[0] : nullptr;
+    const double *wa = nlocal > 0 ? omega[0] : nullptr;
+    double e2 = 0.0, amax = 0.0, lo[3] = {INF, INF, INF}, hi[3] = {-INF, -INF, -INF};
+    long tmax = 0;
     for (int i = 0; i < nlocal; i++) {
-      const double w2 = DIM == 2 ? omega[i][2] * omega[i][2] : dot3(omega[i], omega[i]);
-      mx[0] = std::max(mx[0], speed2<DIM>(v[i]) + q * radius[i] * radius[i] * w2);
-      mx[1] = std::max(mx[1], radius[i]);
+      const double *xi = xa + 3 * i, *vi = va + 3 * i, *wi = wa + 3 * i;
+      const double w2 = DIM == 2 ? wi[2] * wi[2] : dot3(wi, wi);
+      e2 = std::max(e2, speed2<DIM>(vi) + q * radius[i] * radius[i] * w2);
+      amax = std::max(amax, radius[i]);
       for (int d = 0; d < DIM; d++) {
-        mybb[d] = std::min(mybb[d], x[i][d]);
-        mybb[3 + d] = std::max(mybb[3 + d], x[i][d]);
+        lo[d] = std::min(lo[d], xi[d]);
+        hi[d] = std::max(hi[d], xi[d]);
       }
-      maxtag = std::max(maxtag, (long) tag[i]);
+      tmax = std::max(tmax, (long) tag[i]);
     }
+    mx[0] = e2;
+    mx[1] = amax;
+    for (int d = 0; d < DIM; d++) {
+      mybb[d] = lo[d];
+      mybb[3 + d] = hi[d];
+    }
+    maxtag = tmax;
   };
   if (dim == 2)
     bound_pass(std::integral_constant<int, 2>());
@@ -159,11 +173,13 @@ bool FixHardsphereED::window_domain(double t0, double dt)
 
   // ------------------------------------------------ send the atoms others need
   // (the test of inside() without the image shift: per other rank with atoms, the dimensions
-  // its region does not cover whole, each with its interval and period, 0 if not periodic, so
-  // that x - L and x + L are x again)
+  // its region does not cover whole, each with its interval and period, 0 if not periodic.
+  // A periodic coordinate is brought to the interval's period by one shift either way, as
+  // inside() tries x - L, x and x + L; the span has a margin of rounding, so that an atom the
+  // receiver's inside() accepts is always sent (it drops what it does not need))
   struct Test {
     int nd = 0, dims[3];
-    double lo[3], hi[3], L[3];
+    double lo[3], span[3], L[3];
   };
   std::vector<Test> tests;
   for (int r = 0; r < nprocs; r++) {
@@ -173,38 +189,39 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       if (reg[r].whole[d]) continue;
       T.dims[T.nd] = d;
       T.lo[T.nd] = reg[r].lo[d];
-      T.hi[T.nd] = reg[r].hi[d];
       T.L[T.nd] = domain->periodicity[d] ? domain->prd[d] : 0.0;
+      T.span[T.nd] = reg[r].hi[d] - reg[r].lo[d] +
+          1e-9 * (std::fabs(reg[r].lo[d]) + std::fabs(reg[r].hi[d]) + T.L[T.nd]);
       T.nd++;
     }
     tests.push_back(T);
   }
-  auto to_send = [&](const double *xi) {
-    for (const Test &T : tests) {
-      bool in = true;
-      for (int j = 0; j < T.nd && in; j++) {
-        const double y = xi[T.dims[j]], lo = T.lo[j], hi = T.hi[j], L = T.L[j];
-        in = (y >= lo && y <= hi) || (y - L >= lo && y - L <= hi) || (y + L >= lo && y + L <= hi);
-      }
-      if (in) return true;
-    }
-    return false;
-  };
-  dom_sent.resize(nlocal);    // (every entry is set below: no clearing)
+  // (one test at a time over all atoms: straight-line code per atom)
+  dom_sent.assign(nlocal, 0);
   std::vector<char> &sent = dom_sent;
-  int s3[3];
-  size_t nsend = 0;
-  for (int i = 0; i < nlocal; i++) {
-    const bool send = to_send(x[i]);
-    sent[i] = send;
-    nsend += send;
+  {
+    const double *xa = nlocal > 0 ? x[0] : nullptr;
+    char *sd = sent.data();
+    for (const Test &T : tests)
+      for (int i = 0; i < nlocal; i++) {
+        bool in = true;
+        for (int j = 0; j < T.nd; j++) {
+          double u = xa[3 * i + T.dims[j]] - T.lo[j];
+          u -= u >= T.L[j] ? T.L[j] : 0.0;    // (L = 0: no shift, and u >= 0 is required)
+          u += u < 0.0 ? T.L[j] : 0.0;
+          in &= u >= 0.0 && u <= T.span[j];
+        }
+        sd[i] |= (char) in;
+      }
   }
+  std::vector<int> &sendlist = dom_sendlist;    // the sent atoms, ascending
+  sendlist.clear();
+  for (int i = 0; i < nlocal; i++)
+    if (sent[i]) sendlist.push_back(i);
+  const size_t nsend = sendlist.size();
+  int s3[3];
   dsend.resize(nsend * NPACK);    // (every entry is set below)
-  for (size_t i = 0, o = 0; i < (size_t) nlocal; i++)
-    if (sent[i]) {
-      pack_atom(i, t0, &dsend[o]);
-      o += NPACK;
-    }
+  for (size_t k = 0; k < nsend; k++) pack_atom(sendlist[k], t0, &dsend[k * NPACK]);
   allgather(dsend, drecv);
 
   // ------------------------------------------------ the copies this rank needs
@@ -255,18 +272,26 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // every atom's slot (-1: a new one), and whether the empty slots suffice
   dom_inslot.resize(nlocal + nghost);    // (set for every atom before use)
   std::vector<int> &inslot = dom_inslot;
+  long matched = 0;    // atoms that have a slot
   if (keep) {
     if ((long) dom_slot.size() <= maxtag) dom_slot.resize(maxtag + 1, -1);
     dom_stamp++;
     if (dom_stamp == INT32_MAX) keep = false;
-    for (int a = 0; a < nlocal + nghost && keep; a++) {
-      const long t = a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal]];
-      const int sl = dom_slot[t];
-      inslot[a] = sl;
-      if (sl < 0) continue;
-      keep = sseen[sl] != dom_stamp;    // (an atom twice cannot happen: owned once, copied once)
-      sseen[sl] = dom_stamp;
-    }
+    // (locals: stores through int pointers could otherwise alias the stamp)
+    const int stamp = dom_stamp, *slot_of = dom_slot.data();
+    int *seen = sseen.data(), *ins = inslot.data();
+    bool twice = false;    // (an atom twice cannot happen: owned once, copied once)
+    auto match = [&](int a, long t) {
+      const int sl = slot_of[t];
+      ins[a] = sl;
+      if (sl < 0) return;
+      matched++;
+      twice |= seen[sl] == stamp;
+      seen[sl] = stamp;
+    };
+    for (int a = 0; a < nlocal; a++) match(a, (long) tag[a]);
+    for (int c = 0; c < nghost; c++) match(nlocal + c, (long) drecv[gsrc[c]]);
+    keep = !twice;
     // the slots of atoms no longer here are emptied first, so every atom finds one if the slots
     // outnumber the atoms
     keep = keep && nlocal + nghost <= ed.size();
@@ -313,32 +338,55 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     return true;
   };
   long repredicted = 0, owned_changed = 0;
-  std::vector<int> &cslot = dom_cslot;    // the copies' slots
-  cslot.clear();
+  std::vector<int> &cslot = dom_cslot;    // the copies' slots (of the last window until here)
   if (keep) {
     ed.rebase(dom_dt);
     ed.set_clock(t0);
     const int ns = ed.size();
-    for (int sl = 0; sl < ns; sl++) {
-      if (gtag[sl] < 0 || sseen[sl] == dom_stamp) continue;
+    // The slots of atoms no longer here are emptied, in ascending order. They are nearly
+    // always the last window's copies (an owned atom that leaves the rank stays near it, a
+    // copy here): those are looked at first, and all slots only if that does not find as
+    // many as there are occupied slots without an atom.
+    const long *gt = gtag.data();
+    const int *seen = sseen.data(), stamp = dom_stamp;
+    const long unmatched = (long) (ns - dom_free.size()) - matched;
+    std::vector<int> &rm = dom_rm;
+    rm.clear();
+    for (int sl : cslot)
+      if (gt[sl] >= 0 && seen[sl] != stamp) rm.push_back(sl);
+    if ((long) rm.size() == unmatched) {
+      std::sort(rm.begin(), rm.end());
+    } else {
+      rm.clear();
+      for (int sl = 0; sl < ns; sl++)
+        if (gt[sl] >= 0 && seen[sl] != stamp) rm.push_back(sl);
+    }
+    for (int sl : rm) {
       ed.remove(sl);    // an atom no longer in this rank's region
       dom_slot[gtag[sl]] = -1;
       gtag[sl] = -1;
       gmask[sl] = 0;
       dom_free.push_back(sl);
     }
+    cslot.clear();
     sowned.assign(ns, 0);
     lslot.resize(nlocal);
+    const uint8_t *prev = sowned_prev.data();
+    uint8_t *own_now = sowned.data();
+    int *gm = gmask.data(), *ls = lslot.data();
+    const int *ins = inslot.data();
+    const double *xa = nlocal > 0 ? x[0] : nullptr, *va = nlocal > 0 ? v[0] : nullptr;
+    const double *wa = nlocal > 0 ? omega[0] : nullptr;
     for (int a = 0; a < nlocal + nghost; a++) {
-      int sl = inslot[a];
+      int sl = ins[a];
       const bool own = a < nlocal;
-      const bool was_mine = own && sl >= 0 && sowned_prev[sl];
+      const bool was_mine = own && sl >= 0 && prev[sl];
       // an atom this rank owned and wrote back: compared in place (most of them are unchanged)
       if (was_mine) {
-        if (ed.holds(sl, 0.0, x[a], v[a], omega[a], radius[a], rmass[a], type[a])) {
-          gmask[sl] = mask[a];
-          sowned[sl] = 1;
-          lslot[a] = sl;
+        if (ed.holds(sl, 0.0, xa + 3 * a, va + 3 * a, wa + 3 * a, radius[a], rmass[a], type[a])) {
+          gm[sl] = mask[a];
+          own_now[sl] = 1;
+          ls[a] = sl;
           continue;
         }
         owned_changed++;    // something other than this fix changed it
@@ -376,6 +424,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   } else {
     // afresh: owned atoms in slots 0..nlocal-1, the copies after them, then empty slots for
     // later windows; the cell grid covers this window's region and a margin W
+    cslot.clear();
     for (int d = 0; d < 3; d++) {
       dom_whole[d] = R.whole[d];
       if (R.whole[d] || !domain->periodicity[d]) continue;
@@ -428,10 +477,20 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // the events that matter here: those of the copies (influence times, histories compared)
   // and of the sent atoms (histories published); a collision of two other owned atoms changes
   // no influence time (owned atoms have t* = infinity) and is published by nobody
+  // (the watched slots in a list, the copies first, and each one's place in it: the influence
+  // times and event lists below are kept for these only; widx is -1 for every other slot)
   dom_watch.assign(n, 0);
-  for (int e : cslot) dom_watch[e] = 1;
-  for (int i = 0; i < nlocal; i++)
-    if (sent[i]) dom_watch[lslot[i]] = 1;
+  std::vector<int> &wlist = dom_wlist, &widx = dom_widx;
+  for (int e : wlist)
+    if (e < (int) widx.size()) widx[e] = -1;    // (the last window's entries)
+  widx.resize(n, -1);
+  wlist.assign(cslot.begin(), cslot.end());
+  for (int i : sendlist) wlist.push_back(lslot[i]);
+  const int nwatch = (int) wlist.size(), ncopy = (int) cslot.size();
+  for (int k = 0; k < nwatch; k++) {
+    dom_watch[wlist[k]] = 1;
+    widx[wlist[k]] = k;
+  }
   history.clear();
   ed.record_events(&history, dom_watch.data());
   if (check_overlaps && keep) {
@@ -495,13 +554,17 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // Most atoms are far below the bound: the core lists those whose speed after a velocity
   // change came near it (the threshold has a margin that leaves the borderline ones to the
   // exact bound); an atom never listed is bounded by its speed at window time 0 (in LAMMPS's
-  // arrays until the write-back below) or the threshold.
-  if (dim == 2) {
-    for (int i = 0; i < nlocal && !fail; i++)
-      if (speed2<2>(v[i]) >= s2lim) guard(i, speed2<2>(v[i]));
-  } else {
-    for (int i = 0; i < nlocal && !fail; i++)
-      if (speed2<3>(v[i]) >= s2lim) guard(i, speed2<3>(v[i]));
+  // arrays until the write-back below) or the threshold. (No atom starts at the threshold
+  // when reach * widen exceeds 1 by the threshold's margin: gmx[0] bounds every atom's speed.)
+  if (s2lim <= gmx[0] * gmx[0] * (1.0 + 1e-9)) {
+    const double *va = nlocal > 0 ? v[0] : nullptr;
+    if (dim == 2) {
+      for (int i = 0; i < nlocal && !fail; i++)
+        if (speed2<2>(va + 3 * i) >= s2lim) guard(i, speed2<2>(va + 3 * i));
+    } else {
+      for (int i = 0; i < nlocal && !fail; i++)
+        if (speed2<3>(va + 3 * i) >= s2lim) guard(i, speed2<3>(va + 3 * i));
+    }
   }
   if (!ed.fast_list().empty() && !fail) {
     std::vector<int> atom_of(n, -1);
@@ -512,31 +575,39 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   ed.track_fast(INF);
 
   // ------------------------------------------------ influence times t* of the ghosts
-  std::vector<double> &tstar = dom_tstar;    // (set below for owned atoms and copies)
-  tstar.resize(n);
-  for (int e = 0; e < n; e++) tstar[e] = sowned[e] ? INF : -INF;
-  for (auto it = history.rbegin(); it != history.rend(); ++it) {
-    if (it->j < 0) continue;
-    if (tstar[it->i] >= it->t) tstar[it->j] = std::max(tstar[it->j], it->t);
-    if (tstar[it->j] >= it->t) tstar[it->i] = std::max(tstar[it->i], it->t);
+  // (per watched slot; every other slot is an owned atom: t* = infinity)
+  std::vector<double> &tstar = dom_tstar;
+  tstar.resize(nwatch);
+  for (int k = 0; k < nwatch; k++) tstar[k] = k < ncopy ? -INF : INF;
+  {
+    const int *wi = widx.data();
+    double *ts = tstar.data();
+    for (auto it = history.rbegin(); it != history.rend(); ++it) {
+      if (it->j < 0) continue;
+      const int ki = wi[it->i], kj = wi[it->j];
+      if ((ki < 0 ? INF : ts[ki]) >= it->t && kj >= 0) ts[kj] = std::max(ts[kj], it->t);
+      if ((kj < 0 ? INF : ts[kj]) >= it->t && ki >= 0) ts[ki] = std::max(ts[ki], it->t);
+    }
   }
 
   // ------------------------------------------------ publish the histories of sent atoms
-  // events per particle (pair and wall collisions, in time order)
+  // events per watched slot (pair and wall collisions, in time order)
   std::vector<int> &start = dom_start;
-  start.assign(n + 1, 0);
+  start.assign(nwatch + 1, 0);
   for (const auto &h : history) {
-    start[h.i + 1]++;
-    if (h.j >= 0) start[h.j + 1]++;
+    const int ki = widx[h.i];
+    if (ki >= 0) start[ki + 1]++;
+    if (h.j >= 0 && widx[h.j] >= 0) start[widx[h.j] + 1]++;
   }
-  for (int e = 0; e < n; e++) start[e + 1] += start[e];
-  dom_evlist.resize(start[n]);    // (every entry is set below)
+  for (int k = 0; k < nwatch; k++) start[k + 1] += start[k];
+  dom_evlist.resize(start[nwatch]);    // (every entry is set below)
   std::vector<int> &evlist = dom_evlist, &fill = dom_fill;
   fill.assign(start.begin(), start.end() - 1);
   for (int m = 0; m < (int) history.size(); m++) {
     const auto &h = history[m];
-    evlist[fill[h.i]++] = m;
-    if (h.j >= 0) evlist[fill[h.j]++] = m;
+    const int ki = widx[h.i];
+    if (ki >= 0) evlist[fill[ki]++] = m;
+    if (h.j >= 0 && widx[h.j] >= 0) evlist[fill[widx[h.j]]++] = m;
   }
   // one event of particle e as published: time, partner tag or -1 - wall, v and omega after
   auto event_of = [&](int e, int m, double *out) {
@@ -549,31 +620,28 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     ww.to(out + 5);
   };
   size_t hsize = 0;
-  for (int i = 0; i < nlocal; i++)
-    if (sent[i]) hsize += 2 + (size_t) (start[lslot[i] + 1] - start[lslot[i]]) * NEV;
+  for (int k = ncopy; k < nwatch; k++) hsize += 2 + (size_t) (start[k + 1] - start[k]) * NEV;
   hsend.resize(hsize);    // (every entry is set below)
-  for (size_t i = 0, o0 = 0; i < (size_t) nlocal; i++) {
-    if (!sent[i]) continue;
-    const int e = lslot[i];
-    const int k = start[e + 1] - start[e];
+  for (size_t k = ncopy, o0 = 0; k < (size_t) nwatch; k++) {
+    const int e = wlist[k];
+    const int cnt = start[k + 1] - start[k];
     hsend[o0] = (double) gtag[e];
-    hsend[o0 + 1] = (double) k;
-    for (int m = 0; m < k; m++) event_of(e, evlist[start[e] + m], &hsend[o0 + 2 + (size_t) m * NEV]);
-    o0 += 2 + k * NEV;
+    hsend[o0 + 1] = (double) cnt;
+    for (int m = 0; m < cnt; m++) event_of(e, evlist[start[k] + m], &hsend[o0 + 2 + (size_t) m * NEV]);
+    o0 += 2 + cnt * NEV;
   }
   allgather(hsend, hrecv);
 
   // ------------------------------------------------ compare where it mattered
   // where each copy's published history starts in hrecv (-1: none; every copy's owner sent it)
   std::vector<long> &published = dom_pub;
-  published.resize(n);
-  for (int e : cslot) published[e] = -1;
+  published.assign(ncopy, -1);
   for (int p = 0; p < nprocs; p++) {
     if (p == me) continue;
     for (size_t k = displs[p]; k < (size_t) (displs[p] + counts[p]);) {
       const long t = (long) hrecv[k];
       const int sl = t < (long) dom_slot.size() ? dom_slot[t] : -1;
-      if (sl >= 0 && !sowned[sl]) published[sl] = (long) k;    // (a copy here)
+      if (sl >= 0 && widx[sl] >= 0 && widx[sl] < ncopy) published[widx[sl]] = (long) k;    // (a copy here)
       k += 2 + (size_t) hrecv[k + 1] * NEV;
     }
   }
@@ -588,10 +656,10 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   const double wtol = vtol / std::max(gmx[1], 1e-300);
   int conflicts = 0;
   double mine_ev[NEV];
-  for (size_t c = 0; c < cslot.size() && !fail; c++) {
+  for (int c = 0; c < ncopy && !fail; c++) {
     const int e = cslot[c];
-    if (tstar[e] == -INF) continue;
-    const long k = published[e];
+    if (tstar[c] == -INF) continue;
+    const long k = published[c];
     if (k < 0) {
       conflicts++;    // cannot happen: every ghost was sent, so its history was published
       continue;
@@ -600,21 +668,21 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     const int ntheirs = (int) hrecv[k + 1];
     int a = 0, b = 0;
     bool same = true;
-    const double limit = tstar[e] + ttol;
+    const double limit = tstar[c] + ttol;
     while (same) {
-      const bool more_a = a < start[e + 1] - start[e] && history[evlist[start[e] + a]].t <= limit;
+      const bool more_a = a < start[c + 1] - start[c] && history[evlist[start[c] + a]].t <= limit;
       const bool more_b = b < ntheirs && theirs[(size_t) b * NEV] <= limit;
       if (!more_a && !more_b) break;
       if (more_a != more_b) {
         same = false;
         break;
       }
-      event_of(e, evlist[start[e] + a], mine_ev);
+      event_of(e, evlist[start[c] + a], mine_ev);
       const double *t = &theirs[(size_t) b * NEV];
       same = mine_ev[1] == t[1] && std::fabs(mine_ev[0] - t[0]) <= ttol;
-      for (int c = 0; c < 3 && same; c++)
-        same = std::fabs(mine_ev[2 + c] - t[2 + c]) <= vtol &&
-            std::fabs(mine_ev[5 + c] - t[5 + c]) <= wtol;
+      for (int d = 0; d < 3 && same; d++)
+        same = std::fabs(mine_ev[2 + d] - t[2 + d]) <= vtol &&
+            std::fabs(mine_ev[5 + d] - t[5 + d]) <= wtol;
       a++;
       b++;
     }
@@ -641,22 +709,34 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     wlo[d] = domain->periodicity[d] ? domain->boxlo[d] - 0.5 * domain->prd[d] : -INF;
     whi[d] = domain->periodicity[d] ? domain->boxhi[d] + 0.5 * domain->prd[d] : INF;
   }
-  for (int i = 0; i < nlocal; i++) {
-    const int e = lslot[i];
-    double xe[3];
-    ed.state(e, dt, xe, v[i], omega[i]);
-    int dimg[3] = {0, 0, 0};
-    for (int d = 0; d < dim; d++) {    // (nothing moves in z in 2d)
-      if (xe[d] < wlo[d] || xe[d] >= whi[d]) {
-        const double L = domain->prd[d];
-        dimg[d] = (int) std::floor((xe[d] - domain->boxlo[d]) / L);
-        xe[d] -= dimg[d] * L;
+  auto commit = [&](auto dims) {
+    constexpr int DIM = decltype(dims)::value;    // (nothing moves in z in 2d)
+    double *xa = nlocal > 0 ? x[0] : nullptr, *va = nlocal > 0 ? v[0] : nullptr;
+    double *wa = nlocal > 0 ? omega[0] : nullptr;
+    const int *ls = lslot.data();
+    for (int i = 0; i < nlocal; i++) {
+      const int e = ls[i];
+      double xe[3];
+      ed.state(e, dt, xe, va + 3 * i, wa + 3 * i);
+      int dimg[3] = {0, 0, 0};
+      for (int d = 0; d < DIM; d++) {
+        if (xe[d] < wlo[d] || xe[d] >= whi[d]) {
+          const double L = domain->prd[d];
+          dimg[d] = (int) std::floor((xe[d] - domain->boxlo[d]) / L);
+          xe[d] -= dimg[d] * L;
+        }
       }
+      shift_image(image[i], dimg);
+      xa[3 * i] = xe[0];
+      xa[3 * i + 1] = xe[1];
+      xa[3 * i + 2] = xe[2];
+      if (tlast) set_tlast(i, std::as_const(ed).particle(e).t_last, t0);
     }
-    shift_image(image[i], dimg);
-    memcpy(x[i], xe, sizeof(xe));
-    if (tlast) set_tlast(i, std::as_const(ed).particle(e).t_last, t0);
-  }
+  };
+  if (dim == 2)
+    commit(std::integral_constant<int, 2>());
+  else
+    commit(std::integral_constant<int, 3>());
   long lsum[8] = {last.collisions, last.sliding, last.tc_elastic, last.energy_created,
                   last.crossings, last.wall_collisions, last.global_events, repredicted};
   long gsum[8];
