@@ -106,6 +106,8 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=3,
                     help="interleaved runs per case; the fastest of each rank count is used")
     ap.add_argument("--n", type=int, default=0, help="only this lattice side (N = n^2)")
+    ap.add_argument("--dt", type=float, nargs="+", default=None,
+                    help="only these steps (mean free times)")
     ap.add_argument("--callgrind", action="store_true",
                     help="parallel efficiency from instruction counts (N = 1e5, slow but reproducible)")
     a = ap.parse_args(argv)
@@ -118,7 +120,10 @@ def main(argv=None):
     else:
         cases = [(n, phi, dt) for n in (100, 316) for phi in (0.05, 0.3) for dt in (1, 2, 4, 8)]
     if a.n:
-        cases = [c for c in cases if c[0] == a.n] or [(a.n, phi, dt) for phi in (0.05, 0.3) for dt in (1, 2)]
+        cases = [c for c in cases if c[0] == a.n] or [(a.n, phi, dt) for phi in (0.05, 0.3) for dt in (0.5, 1, 2)]
+    if a.dt:
+        sides = sorted({c[0] for c in cases})
+        cases = [(n, phi, dt) for n in sides for phi in (0.05, 0.3) for dt in a.dt]
     rows = []
     for nside, phi, dt in cli.progress(cases, "scaling"):
         ncoll = 10 if nside >= 316 else 20
@@ -175,7 +180,7 @@ def callgrind_table(ranks, ncoll=10):
           "ranks (MPI waiting excluded) | efficiency (instructions) | steady state: 1 rank | "
           f"busiest of {ranks} | steady-state efficiency |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for phi, dt in ((0.3, 1), (0.3, 2), (0.05, 1), (0.05, 2)):
+    for phi, dt in ((0.3, 1), (0.3, 2), (0.05, 0.5), (0.05, 1), (0.05, 2)):
         N, c1, ir1 = run_callgrind(316, phi, dt, ncoll, 1, work)
         _, c2, ir2 = run_callgrind(316, phi, dt, ncoll, ranks, work)
         _, d1, jr1 = run_callgrind(316, phi, dt, 2 * ncoll, 1, work)

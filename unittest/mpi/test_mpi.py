@@ -97,6 +97,27 @@ def test_same_trajectory_on_1_2_4_ranks(tmp_path, scene):
         assert diff < 1e-9, f"{scene}: {n} ranks differ from 1 rank by {diff:.2e}"
 
 
+def test_atom_replaced_between_runs(tmp_path):
+    """Between two runs atom 218, far inside one rank's region (a copy on no other rank), is
+    deleted and a new atom created where it was. The atom count and so the cell grid stay the
+    same, so every rank keeps its core; the owner must empty the slot of an atom that is gone
+    although it was no copy (the slots to empty are otherwise found among the last copies).
+    The trajectories on 1, 2 and 4 ranks agree."""
+    w = str(tmp_path)
+    lmp(w, 1, scene="dilute", steps=0, out="s0", restart_out="init", log="log.init")
+    box = box_of(os.path.join(w, "log.init"))
+    for n in (1, 2, 4):
+        lmp(w, n, scene="dilute", steps=3, cut=3, every=1, restart_in="init", out=f"s{n}",
+            log=f"log{n}")
+    a = state(os.path.join(w, "s1"))
+    assert 218 not in a[:, 0] and 901 in a[:, 0] and len(a) == 900
+    for n in (2, 4):
+        d = lammpslog.read_thermo(os.path.join(w, f"log{n}"))    # (the second run)
+        assert d["f_ed[18]"][1] < 0.5 * len(a), f"{n} ranks: the second run started afresh"
+        diff = scaled_difference(a, state(os.path.join(w, f"s{n}")), box)
+        assert diff < 1e-9, f"{n} ranks differ from 1 rank by {diff:.2e}"
+
+
 def test_chain_across_boundary_is_detected_and_redone(tmp_path):
     w = str(tmp_path)
     lmp(w, 1, scene="chain", steps=1, out="s1", log="log1")
