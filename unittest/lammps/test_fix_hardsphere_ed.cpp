@@ -286,9 +286,10 @@ TEST(FixHardsphereED, ManyPeriodsCrossedStayExact)
       << "every step's offsets leave their range: each step starts afresh";
 }
 
-// The memory-saving LAMMPS settings the doc recommends (no atom sorting, no displacement check)
-// give the same trajectory as LAMMPS's displacement check with sorting at every build, at a
-// step short enough for LAMMPS to skip some builds (0.02 collision times) and at a long one.
+// The memory-saving LAMMPS settings the doc recommends (no atom sorting, no displacement check,
+// no neighbor skin: ghost atoms only within the contact distance) give the same trajectory as
+// LAMMPS's displacement check with sorting at every build and the default skin, at a step short
+// enough for LAMMPS to skip some builds (0.02 collision times) and at a long one.
 TEST(FixHardsphereED, LeanLammpsSettingsSameTrajectory)
 {
   for (const char *dt : {"0.005", "0.3"}) {
@@ -299,9 +300,12 @@ TEST(FixHardsphereED, LeanLammpsSettingsSameTrajectory)
     run(a.get(), setup + "atom_modify sort 1 1.0\nrun 200 post no");
     Reference ra = reference_of(a.get());
     const double builds = a->neighbor->ncalls;
+    const int ghosts = a->atom->nghost;
     a.reset();
     auto b = make_lammps();
-    run(b.get(), setup + "atom_modify sort 0 0\nneigh_modify every 1 delay 0 check no\nrun 200 post no");
+    run(b.get(), setup + "atom_modify sort 0 0\nneigh_modify every 1 delay 0 check no\n"
+                         "neighbor 0.0 bin\nrun 200 post no");
+    EXPECT_LT(b->atom->nghost, ghosts) << "dt " << dt << ": no skin, fewer ghost atoms";
     // (the core's trajectory is the same; LAMMPS may have wrapped an atom in one run and not
     // yet in the other, and unwrapping x - L + L rounds in the last bit)
     EXPECT_LT(max_deviation(b.get(), ra), 1e-12) << "dt " << dt << ": the same trajectory";
