@@ -442,7 +442,11 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
   // step's order usually still holds
   bool same_order = (int) order.size() == ntotal;
-  for (int s = 0; same_order && s < ntotal; s++) same_order = (tagint) field(order[s], 0) == otags[s];
+  if (nprocs == 1) {
+    for (int s = 0; same_order && s < ntotal; s++) same_order = tag[order[s]] == otags[s];
+  } else {
+    for (int s = 0; same_order && s < ntotal; s++) same_order = (tagint) field(order[s], 0) == otags[s];
+  }
   if (!same_order) {
     order.resize(ntotal);
     for (int k = 0; k < ntotal; k++) order[k] = k;
@@ -470,22 +474,22 @@ void FixHardsphereED::window_gather(double t0, double dt)
       (int) offset.size() == noff * ntotal;
   for (int s = 0; reuse && s < ntotal; s++) {
     const int k = order[s];
-    const auto p = std::as_const(ed).particle(s);    // (a read-only view)
-    double w[9];
-    written_state(s, prev_dt, w);
     // this window's x, v, omega of the atom (in place on one rank)
     const double *bx, *bv, *bw;
     if (nprocs == 1) {
       bx = x[k];
       bv = v[k];
       bw = omega[k];
-      reuse = radius[k] == p.a && rmass[k] == p.m && type[k] == p.type;
+      reuse = ed.is_body(s, radius[k], rmass[k], type[k]);
     } else {
       bx = &recvbuf[(size_t) k * NPACK + 1];
       bv = bx + 3;
       bw = bx + 6;
-      reuse = bx[9] == p.a && bx[10] == p.m && (int) bx[11] == p.type;
+      reuse = ed.is_body(s, bx[9], bx[10], (int) bx[11]);
     }
+    if (!reuse) break;
+    double w[9];
+    written_state(s, prev_dt, w);
     for (int d = 0; reuse && d < 3; d++) reuse = bv[d] == w[3 + d] && bw[d] == w[6 + d];
     // positions: what this fix wrote, or that shifted by one period by Domain::pbc()
     for (int d = 0; reuse && d < 3; d++) {

@@ -265,13 +265,19 @@ class EventDriven {
   // state of particle e (external index) at window time t (lazy update, not stored)
   Vec3 position(int e, double t) const { return pos(loc[e], t); }
   Vec3 velocity(int e, double t) const { return vel(loc[e], t); }
+  // does particle e have radius a, mass m and type ty (bit for bit)?
+  bool is_body(int e, double a, double m, int ty) const
+  {
+    const int i = loc[e];
+    return H[i].a == a && C[i].m == m && S[i].type == ty;
+  }
   // does particle e hold, bit for bit, radius a, mass m, type ty and, at window time t,
   // position x, velocity v and angular velocity w (3 values each)?
   bool holds(int e, double t, const double *x, const double *v, const double *w, double a, double m,
              int ty) const
   {
+    if (!is_body(e, a, m, ty)) return false;
     const int i = loc[e];
-    if (H[i].a != a || C[i].m != m || S[i].type != ty) return false;
     const Vec3 xs = pos(i, t), vs = vel(i, t), &ws = C[i].w;
     return x[0] == xs.x && x[1] == xs.y && x[2] == xs.z && v[0] == vs.x && v[1] == vs.y &&
         v[2] == vs.z && w[0] == ws.x && w[1] == ws.y && w[2] == ws.z;
