@@ -441,21 +441,18 @@ void FixHardsphereED::window_gather(double t0, double dt)
 
   // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
   // step's order usually still holds
+  auto tag_of = [&](int k) { return nprocs > 1 ? (tagint) recvbuf[(size_t) k * NPACK] : tag[k]; };
   bool same_order = (int) order.size() == ntotal;
-  if (nprocs == 1) {
-    for (int s = 0; same_order && s < ntotal; s++) same_order = tag[order[s]] == otags[s];
-  } else {
-    for (int s = 0; same_order && s < ntotal; s++) same_order = (tagint) field(order[s], 0) == otags[s];
-  }
+  for (int s = 0; same_order && s < ntotal; s++) same_order = tag_of(order[s]) == otags[s];
   if (!same_order) {
     order.resize(ntotal);
     for (int k = 0; k < ntotal; k++) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return field(a, 0) < field(b, 0); });
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
     // the same atoms as the core's if the sorted tags are the same
     bool same = same_atoms && (int) otags.size() == ntotal;
     otags.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
-      const tagint t = (tagint) field(order[s], 0);
+      const tagint t = tag_of(order[s]);
       same = same && otags[s] == t;
       otags[s] = t;
     }

@@ -82,6 +82,9 @@ bool FixHardsphereED::window_domain(double t0, double dt)
 {
   const int nlocal = atom->nlocal, nprocs = comm->nprocs, me = comm->me;
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  // (LAMMPS keeps x, v and omega contiguous, 3 per atom: the passes below index them directly)
+  double *const xa = nlocal > 0 ? x[0] : nullptr, *const va = nlocal > 0 ? v[0] : nullptr;
+  double *const wa = nlocal > 0 ? omega[0] : nullptr;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *type = atom->type, *mask = atom->mask;
   const tagint *tag = atom->tag;
@@ -101,12 +104,10 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   long maxtag = 0;
   // (in 2d the core moves in x-y and spins about z only: the other components play no part)
-  // (LAMMPS keeps x, v and omega contiguous, 3 per atom; the running extremes live in locals,
-  // which the compiler keeps in registers: through the escaping arrays it would reload them)
+  // (the running extremes live in locals, which the compiler keeps in registers: through the
+  // escaping arrays it would reload them)
   auto bound_pass = [&](auto dims) {
     constexpr int DIM = decltype(dims)::value;
-    const double *xa = nlocal > 0 ? x[0] : nullptr, *va = nlocal > 0 ? v[0] : nullptr;
-    const double *wa = nlocal > 0 ? omega[0] : nullptr;
     double e2 = 0.0, amax = 0.0, lo[3] = {INF, INF, INF}, hi[3] = {-INF, -INF, -INF};
     long tmax = 0;
     for (int i = 0; i < nlocal; i++) {
@@ -200,7 +201,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   dom_sent.assign(nlocal, 0);
   std::vector<char> &sent = dom_sent;
   {
-    const double *xa = nlocal > 0 ? x[0] : nullptr;
     char *sd = sent.data();
     for (const Test &T : tests)
       for (int i = 0; i < nlocal; i++) {
@@ -375,8 +375,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     uint8_t *own_now = sowned.data();
     int *gm = gmask.data(), *ls = lslot.data();
     const int *ins = inslot.data();
-    const double *xa = nlocal > 0 ? x[0] : nullptr, *va = nlocal > 0 ? v[0] : nullptr;
-    const double *wa = nlocal > 0 ? omega[0] : nullptr;
     for (int a = 0; a < nlocal + nghost; a++) {
       int sl = ins[a];
       const bool own = a < nlocal;
@@ -557,7 +555,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // arrays until the write-back below) or the threshold. (No atom starts at the threshold
   // when reach * widen exceeds 1 by the threshold's margin: gmx[0] bounds every atom's speed.)
   if (s2lim <= gmx[0] * gmx[0] * (1.0 + 1e-9)) {
-    const double *va = nlocal > 0 ? v[0] : nullptr;
     if (dim == 2) {
       for (int i = 0; i < nlocal && !fail; i++)
         if (speed2<2>(va + 3 * i) >= s2lim) guard(i, speed2<2>(va + 3 * i));
@@ -594,10 +591,12 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // events per watched slot (pair and wall collisions, in time order)
   std::vector<int> &start = dom_start;
   start.assign(nwatch + 1, 0);
+  // (a watched partner's place in the list, or -1: a wall, or an owned atom nobody watches)
+  auto place_of_j = [&](const granfric::EDEvent &h) { return h.j >= 0 ? widx[h.j] : -1; };
   for (const auto &h : history) {
-    const int ki = widx[h.i];
+    const int ki = widx[h.i], kj = place_of_j(h);
     if (ki >= 0) start[ki + 1]++;
-    if (h.j >= 0 && widx[h.j] >= 0) start[widx[h.j] + 1]++;
+    if (kj >= 0) start[kj + 1]++;
   }
   for (int k = 0; k < nwatch; k++) start[k + 1] += start[k];
   dom_evlist.resize(start[nwatch]);    // (every entry is set below)
@@ -605,9 +604,9 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   fill.assign(start.begin(), start.end() - 1);
   for (int m = 0; m < (int) history.size(); m++) {
     const auto &h = history[m];
-    const int ki = widx[h.i];
+    const int ki = widx[h.i], kj = place_of_j(h);
     if (ki >= 0) evlist[fill[ki]++] = m;
-    if (h.j >= 0 && widx[h.j] >= 0) evlist[fill[widx[h.j]]++] = m;
+    if (kj >= 0) evlist[fill[kj]++] = m;
   }
   // one event of particle e as published: time, partner tag or -1 - wall, v and omega after
   auto event_of = [&](int e, int m, double *out) {
@@ -711,8 +710,6 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   }
   auto commit = [&](auto dims) {
     constexpr int DIM = decltype(dims)::value;    // (nothing moves in z in 2d)
-    double *xa = nlocal > 0 ? x[0] : nullptr, *va = nlocal > 0 ? v[0] : nullptr;
-    double *wa = nlocal > 0 ? omega[0] : nullptr;
     const int *ls = lslot.data();
     for (int i = 0; i < nlocal; i++) {
       const int e = ls[i];
