@@ -46,6 +46,7 @@ sys.path.insert(0, os.path.join(ROOT, "tools"))
 from granfric import cooling, herbst, lammpslog  # noqa: E402
 
 LMP = os.path.join(ROOT, "tools", "lmp")
+BUILD = os.environ.get("GRANFRIC_BUILD", os.path.join(ROOT, "build"))
 SOFT = os.path.join(HERE, "soft")
 ACCURACY = 0.01            # "equal accuracy": |relative error of T_tr| <= 1 %
 
@@ -534,6 +535,55 @@ def mapping_check(S, work, bar):
 # --------------------------------------------------------------------------------------------
 # analysis, table, chart
 # --------------------------------------------------------------------------------------------
+# --------------------------------------------------------------------------------------------
+# the ceiling on the ratio: exact ED's event core alone against the DEM run
+# --------------------------------------------------------------------------------------------
+def core_floor(N, phi, size):
+    """bench_kick on the event core alone (no LAMMPS; elastic smooth discs at the scene's N and
+    fraction, all in cache): seconds per collision, and per particle and kick (a kick re-predicts
+    every particle). None if bench_kick is not built."""
+    exe = os.path.join(BUILD, "bench_kick")
+    if not os.access(exe, os.X_OK):
+        return None
+    mfts, rounds = {"smoke": (4, 2), "quick": (10, 3), "full": (20, 5)}[size]
+    p = subprocess.run([exe, "2", str(N), f"{phi:g}", "10", str(mfts), str(rounds)],
+                       capture_output=True, text=True, check=True)
+    words = p.stdout.split()
+    per_coll = float(words[words.index("per", words.index("no")) - 2]) * 1e-6
+    per_kick = float(words[words.index("kick") + 2]) * 1e-6
+    return dict(coll=per_coll, kick=per_kick, line=p.stdout.strip())
+
+
+def ceiling(scene, d, info, floor):
+    """What the ratio against DEM run d could be at most, if exact ED cost only what its event core
+    costs alone (floor, from core_floor): DEM's cost per collision time over the core's (half a
+    collision per particle and collision time, plus the kicks, which re-predict every particle).
+    The kicks alone bound it by (DEM steps per kick) x (DEM cost of a particle step) / (core
+    cost of re-predicting a particle)."""
+    if scene == "cooling":
+        steps = COOL["tend"] / (d["dt_mft"] * info["mft0"]) / info["collision_times"]
+        kicks = 0.0
+    else:
+        steps = 1.0 / d["dt_mft"]
+        kicks = DRIVE["fdr"] * info["mft"]
+    step_cost = d["cost"] / 1000.0 / steps          # CPU s per particle and DEM step
+    ed_floor = 1000.0 * (0.5 * floor["coll"] + kicks * floor["kick"])
+    text = (f"{scene}: ceiling against {label(d)}: a DEM particle step costs "
+            f"{1e9 * step_cost:.0f} ns ({steps:.0f} steps per collision time); exact ED's event "
+            f"core alone (bench_kick: no LAMMPS, data in cache, elastic smooth discs at N = "
+            f"{info['N']} and this fraction) costs {1e6 * floor['coll']:.2f} us per collision")
+    if kicks > 0:
+        text += (f" and {1e6 * floor['kick']:.3f} us per particle and kick ({kicks:.1f} kicks per "
+                 f"collision time)")
+    text += (f": {ed_floor:.3g} s per collision time per 1000 particles, so the ratio is at most "
+             f"**{d['cost'] / ed_floor:.0f}**")
+    if kicks > 0:
+        text += (f"; the kicks alone cap it at {steps / kicks:.0f} DEM steps per kick x "
+                 f"{1e9 * step_cost:.0f} ns / {1e9 * floor['kick']:.0f} ns = "
+                 f"**{d['cost'] / (1000.0 * kicks * floor['kick']):.0f}**")
+    return text
+
+
 def best(rows, scene, method, accuracy=ACCURACY, converged=False):
     """Cheapest run of a method on a scene with |error of T_tr| <= accuracy. For DEM the
     statistical error bar must also be below 0.7 % (else the statement means little); with
@@ -575,7 +625,7 @@ def fmt_pct(x, s=None):
     return f"{100 * x:+.2f} %" + (f" ± {100 * s:.2f}" if s not in ("", None) else "")
 
 
-def write_markdown(path, rows, infos, mapping, ratios, size):
+def write_markdown(path, rows, infos, mapping, ratios, size, ceilings=()):
     L = [f"# Speed against accuracy ({size})", "",
          "x = CPU seconds (user + system of the LAMMPS process, minus its start-up/read/setup "
          "baseline) per collision time per 1000 particles; errors are relative to the exact-ED "
@@ -620,6 +670,12 @@ def write_markdown(path, rows, infos, mapping, ratios, size):
     for line in ratios:
         L.append(f"- {line}")
     L.append("")
+    if ceilings:
+        L.append("## What bounds the ratio: exact ED's event core alone (same run)")
+        L.append("")
+        for line in ceilings:
+            L.append(f"- {line}")
+        L.append("")
     L.append("## The soft-sphere mapping, two-particle collisions (t_c = 1e-3, approach speed 1)")
     L.append("")
     L.append("Cooling law (discs, r = 0.9, beta = 0, mu = 1e8), mean ± spread over contact phases:")
@@ -731,7 +787,7 @@ def main(argv=None):
         rows += r
     bar.close()
 
-    ratios = []
+    ratios, ceilings, floors = [], [], {}
     for scene in infos:
         e = best(rows, scene, "ED")
         for conv in (False, True):
@@ -741,6 +797,12 @@ def main(argv=None):
             if e and d:
                 ratios.append(f"{scene} ({what}): soft DEM {label(d)}, {d['cost']:.3g} s / exact ED "
                               f"{label(e)}, {e['cost']:.3g} s = **{d['cost'] / e['cost']:.0f}**")
+                phi = COOL["phi"] if scene == "cooling" else float(scene.split()[1])
+                key = (infos[scene]["N"], phi)
+                if key not in floors:
+                    floors[key] = core_floor(*key, size)
+                if floors[key]:
+                    ceilings.append(ceiling(scene, d, infos[scene], floors[key]) + f" ({what})")
             elif e:
                 ratios.append(f"{scene} ({what}): no soft DEM run with T_tr within 1 % (and error bar "
                               f"<= 0.7 %); exact ED {label(e)}: {e['cost']:.3g} s")
@@ -752,11 +814,12 @@ def main(argv=None):
         for r in rows:
             w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
     md_path = os.path.join(a.out, "speed_accuracy.md")
-    write_markdown(md_path, rows, infos, mapping, ratios, size)
+    write_markdown(md_path, rows, infos, mapping, ratios, size, ceilings)
     png_path = os.path.join(a.out, "speed_accuracy.png")
     plot(png_path, rows, infos)
     print(open(md_path).read())
     print("\n".join(ratios))
+    print("\n".join(ceilings))
     print(f"wrote {csv_path}, {md_path}, {png_path}")
     return rows, infos, mapping
 

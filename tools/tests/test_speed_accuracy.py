@@ -95,3 +95,30 @@ def test_smoke_run_writes_chart_table_and_sane_rows(tmp_path):
     # (omega dt = 2): the energy blows up and the run is reported as failed
     assert dem[(0.1, 1.5)]["status"] == "failed"
     assert "Soft/ED cost ratio" in open(out / "speed_accuracy.md").read()
+
+
+def test_ceiling_from_the_event_core_alone():
+    """The ceiling on the DEM/ED ratio: DEM's cost per collision time over what the event core
+    alone costs (half a collision per particle, plus every kick re-predicting every particle)."""
+    d = dict(method="DEM", cost=0.06, dt_mft=0.001, tc_mft=0.01, dt_over_tc=0.1)
+    floor = dict(coll=2e-6, kick=2e-7)
+    # driven: 1000 steps per collision time, 10 kicks per collision time (f_dr = 2, mft = 5)
+    text = sa.ceiling("driven 0.05", d, dict(N=4096, mft=5.0), floor)
+    ed_floor = 1000.0 * (0.5 * 2e-6 + 10.0 * 2e-7)            # 0.003 s
+    assert f"at most **{0.06 / ed_floor:.0f}**" in text        # 20
+    assert "60 ns" in text and "100 DEM steps per kick" in text
+    assert f"**{0.06 / (1000.0 * 10.0 * 2e-7):.0f}**" in text   # the kicks alone: 30
+    # cooling: no kicks; steps per collision time from the run's length in collision times
+    text = sa.ceiling("cooling", d, dict(N=4096, mft0=4.0, collision_times=4.0), floor)
+    assert "1250 steps per collision time" in text and "per particle and kick" not in text
+    assert f"at most **{0.06 / (1000.0 * 0.5 * 2e-6):.0f}**" in text    # 60
+
+
+def test_core_floor_measures_collisions_and_kicks():
+    """bench_kick (built with the project): the core's cost per collision and per particle and kick
+    are parsed from its output and positive."""
+    f = sa.core_floor(256, 0.05, "smoke")
+    if f is None:
+        pytest.skip("bench_kick is not built")
+    assert 0 < f["coll"] < 1e-3 and 0 < f["kick"] < 1e-3
+    assert "one kick costs" in f["line"]

@@ -1,0 +1,67 @@
+// GRANFRIC benchmark: what a global event (a random kick of every particle, fix hardsphere/kick)
+// costs the event-driven core, per particle. A kick changes every velocity, so every particle's
+// next event must be predicted afresh: the core brings all particles to the kick time and runs
+// predict_all() (each pair of neighbouring cells once) and rebuilds the queue. Here the kicks
+// change nothing (apply is empty), so the trajectory is the same with and without them (up to
+// rounding) and the difference of the two timings is the cost of the re-predictions alone.
+// Rounds alternate without and with kicks; prints the fastest of each. It is not a test.
+//   bench_kick [dim] [N] [fraction] [kicks per mean free time] [mean free times per round]
+//              [rounds]
+#include "bench_system.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+using namespace granfric;
+
+int main(int argc, char **argv)
+{
+  const int dim = argc > 1 ? atoi(argv[1]) : 2;
+  const long N = argc > 2 ? atol(argv[2]) : 4096;
+  const double phi = argc > 3 ? atof(argv[3]) : 0.05;
+  const int kpm = argc > 4 ? std::max(1, atoi(argv[4])) : 10;
+  const int mfts = argc > 5 ? std::max(1, atoi(argv[5])) : 20;
+  const int rounds = argc > 6 ? std::max(1, atoi(argv[6])) : 5;
+
+  EventDriven ed;
+  const double mft = bench::build(ed, dim, N, phi, 0.0, 1);
+  ed.start();
+  for (int w = 0; w < 5; w++) {    // equilibrate 5 mean free times
+    ed.advance_to(mft);
+    ed.rebase(mft);
+  }
+  // one round: mfts windows of one mean free time, with kpm empty kicks in each or none
+  auto round = [&](bool kicks, EDStats &s) {
+    std::vector<double> times;
+    if (kicks)
+      for (int k = 0; k < kpm; k++) times.push_back((k + 0.5) * mft / kpm);
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int w = 0; w < mfts; w++) {
+      ed.set_global_events(times, [](int) {});    // (for the next window only)
+      s.add(ed.advance_to(mft));
+      ed.rebase(mft);
+    }
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  double best[2] = {1e300, 1e300};
+  EDStats st[2];
+  for (int r = 0; r < rounds; r++)
+    for (int k = 0; k < 2; k++) {
+      EDStats s;
+      best[k] = std::min(best[k], round(k == 1, s));
+      st[k] = s;
+    }
+  const double per_coll = best[0] / (double) st[0].collisions;
+  const double per_kick = (best[1] - best[0]) / ((double) kpm * mfts * N);
+  std::printf("dim %d N %ld fraction %.3f | %d mean free times per round, fastest of %d | "
+              "no kicks: %ld collisions, %.3g us per collision | %d empty kicks per mean free "
+              "time (%ld global events): %ld collisions, +%.3g s | one kick costs %.3g us per "
+              "particle = %.3g collisions\n",
+              dim, N, phi, mfts, rounds, st[0].collisions, 1e6 * per_coll, kpm,
+              st[1].global_events, st[1].collisions, best[1] - best[0], 1e6 * per_kick,
+              per_kick / per_coll);
+  return 0;
+}

@@ -1,0 +1,50 @@
+// GRANFRIC benchmarks: one periodic test system of the event-driven core (shared by bench_core
+// and bench_kick)
+#pragma once
+
+#include "core/event_driven.h"
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace granfric {
+namespace bench {
+// one periodic system of n equal discs/spheres (diameter 1, mass 1) at fraction phi: lattice start,
+// Maxwellian velocities, T = 1; returns the Enskog mean free time at T = 1 (2D Henderson, 3D
+// Carnahan-Starling)
+inline double build(EventDriven &ed, int dim, long n, double phi, double cell, unsigned seed)
+{
+  const double a = 0.5;
+  const double vol1 = dim == 2 ? M_PI * a * a : 4.0 / 3.0 * M_PI * a * a * a;
+  const double side = std::pow(n * vol1 / phi, 1.0 / dim);
+  const int m = (int) std::ceil(std::pow((double) n, 1.0 / dim) - 1e-9);
+  const double h = side / m;
+  EDOptions o;
+  o.dim = dim;
+  o.cell_width = cell;    // (diameter 1)
+  for (int d = 0; d < 3; d++) {
+    o.lo[d] = 0.0;
+    o.hi[d] = (d < dim) ? side : 1.0;
+  }
+  o.shape.assign(2, dim == 2 ? 0.5 : 0.4);
+  ed.configure(o, 1, std::vector<LawParams>(4, LawParams::rough(1.0, -1.0)));
+  ed.resize((int) n);
+  std::mt19937_64 gen(seed);
+  std::normal_distribution<double> G(0, 1);
+  for (long i = 0; i < n; i++) {
+    auto p = ed.particle((int) i);
+    const long ix = i % m, iy = (i / m) % m, iz = i / ((long) m * m);
+    p.x = Vec3((ix + 0.5) * h, (iy + 0.5) * h, dim == 3 ? (iz + 0.5) * h : 0.5);
+    p.v = Vec3(G(gen), G(gen), dim == 3 ? G(gen) : 0.0);
+    p.a = a;
+    p.m = 1.0;
+  }
+  const double dens = n / std::pow(side, dim);
+  const double g = dim == 2 ? (1 - 7 * phi / 16) / ((1 - phi) * (1 - phi))
+                            : (1 - phi / 2) / std::pow(1 - phi, 3);
+  const double nu = dim == 2 ? 2 * dens * g * std::sqrt(M_PI) : 4 * dens * g * std::sqrt(M_PI);
+  return 1.0 / nu;
+}
+}    // namespace bench
+}    // namespace granfric
