@@ -51,8 +51,8 @@ int main(int argc, char **argv)
   for (int r = 0; r < rounds; r++)
     for (int k = 0; k < 2; k++) {
       EDStats s;
-      best[k] = std::min(best[k], round(k == 1, s));
-      st[k] = s;
+      const double secs = round(k == 1, s);
+      if (secs < best[k]) best[k] = secs, st[k] = s;    // (the fastest round, with its counts)
     }
   const double per_coll = best[0] / (double) st[0].collisions;
   const double per_kick = (best[1] - best[0]) / ((double) kpm * mfts * N);

@@ -545,9 +545,6 @@ def mapping_check(S, work, bar):
 
 
 # --------------------------------------------------------------------------------------------
-# analysis, table, chart
-# --------------------------------------------------------------------------------------------
-# --------------------------------------------------------------------------------------------
 # the ceiling on the ratio: exact ED's event core alone against the DEM run
 # --------------------------------------------------------------------------------------------
 def core_floor(N, phi, size):
@@ -596,6 +593,9 @@ def ceiling(scene, d, info, floor):
     return text
 
 
+# --------------------------------------------------------------------------------------------
+# analysis, table, chart
+# --------------------------------------------------------------------------------------------
 def best(rows, scene, method, accuracy=ACCURACY, converged=False):
     """Cheapest run of a method on a scene with |error of T_tr| <= accuracy. For DEM the
     statistical error bar must also be below 0.7 % (else the statement means little); with
