@@ -39,8 +39,7 @@ int main(int argc, char **argv)
   long nsys = nb;    // particles per block system (owned + shell)
   double wshell = 0.0;
   if (K > 1 && shell) {
-    EventDriven probe;
-    const double mft1 = build(probe, dim, 1000, phi, cell, 1);    // (the mean free time only)
+    const double mft1 = bench::mean_free_time(dim, nb, phi);
     double lo = 0.0, hi = 20.0;    // N P(|v| > u) = 1, Maxwell at T = 1 in dim dimensions
     for (int it = 0; it < 100; it++) {
       const double u = 0.5 * (lo + hi);
@@ -50,8 +49,7 @@ int main(int argc, char **argv)
       (N * tail > 1.0 ? lo : hi) = u;
     }
     wshell = 2.0 * 1.2 * lo * dt_mft * mft1 + 1.0;
-    const double a = 0.5, vol1 = dim == 2 ? M_PI * a * a : 4.0 / 3.0 * M_PI * a * a * a;
-    const double side = std::pow(nb * vol1 / phi, 1.0 / dim);
+    const double side = bench::box_side(dim, nb, phi);
     nsys = std::lround(nb * std::pow((side + 2.0 * wshell) / side, dim));
   }
 

@@ -10,14 +10,31 @@
 
 namespace granfric {
 namespace bench {
+constexpr double RADIUS = 0.5;    // (diameter 1)
+
+// the side of the cubic (square) periodic box that holds n particles at fraction phi
+inline double box_side(int dim, long n, double phi)
+{
+  const double a = RADIUS;
+  const double vol1 = dim == 2 ? M_PI * a * a : 4.0 / 3.0 * M_PI * a * a * a;
+  return std::pow(n * vol1 / phi, 1.0 / dim);
+}
+
+// the Enskog mean free time at T = 1 (2D Henderson, 3D Carnahan-Starling) of that system
+inline double mean_free_time(int dim, long n, double phi)
+{
+  const double dens = n / std::pow(box_side(dim, n, phi), dim);
+  const double g = dim == 2 ? (1 - 7 * phi / 16) / ((1 - phi) * (1 - phi))
+                            : (1 - phi / 2) / std::pow(1 - phi, 3);
+  const double nu = dim == 2 ? 2 * dens * g * std::sqrt(M_PI) : 4 * dens * g * std::sqrt(M_PI);
+  return 1.0 / nu;
+}
+
 // one periodic system of n equal discs/spheres (diameter 1, mass 1) at fraction phi: lattice start,
-// Maxwellian velocities, T = 1; returns the Enskog mean free time at T = 1 (2D Henderson, 3D
-// Carnahan-Starling)
+// Maxwellian velocities, T = 1; returns its mean free time at T = 1 (mean_free_time)
 inline double build(EventDriven &ed, int dim, long n, double phi, double cell, unsigned seed)
 {
-  const double a = 0.5;
-  const double vol1 = dim == 2 ? M_PI * a * a : 4.0 / 3.0 * M_PI * a * a * a;
-  const double side = std::pow(n * vol1 / phi, 1.0 / dim);
+  const double side = box_side(dim, n, phi);
   const int m = (int) std::ceil(std::pow((double) n, 1.0 / dim) - 1e-9);
   const double h = side / m;
   EDOptions o;
@@ -37,14 +54,10 @@ inline double build(EventDriven &ed, int dim, long n, double phi, double cell, u
     const long ix = i % m, iy = (i / m) % m, iz = i / ((long) m * m);
     p.x = Vec3((ix + 0.5) * h, (iy + 0.5) * h, dim == 3 ? (iz + 0.5) * h : 0.5);
     p.v = Vec3(G(gen), G(gen), dim == 3 ? G(gen) : 0.0);
-    p.a = a;
+    p.a = RADIUS;
     p.m = 1.0;
   }
-  const double dens = n / std::pow(side, dim);
-  const double g = dim == 2 ? (1 - 7 * phi / 16) / ((1 - phi) * (1 - phi))
-                            : (1 - phi / 2) / std::pow(1 - phi, 3);
-  const double nu = dim == 2 ? 2 * dens * g * std::sqrt(M_PI) : 4 * dens * g * std::sqrt(M_PI);
-  return 1.0 / nu;
+  return mean_free_time(dim, n, phi);
 }
 }    // namespace bench
 }    // namespace granfric

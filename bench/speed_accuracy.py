@@ -34,6 +34,7 @@ import argparse
 import csv
 import math
 import os
+import re
 import resource
 import subprocess
 import sys
@@ -268,7 +269,7 @@ def cooling_scene(S, work, bar):
     sT1, sR1 = ref[:, 0].std(ddof=1) / Tref, ref[:, 1].std(ddof=1) / Rref   # one run, relative
     nref = len(ref_seeds)
     ncoll_times = float(np.mean(2.0 * ref[:, 2] / N))       # collisions per particle up to tend
-    info = {"N": N, "mft0": mft0, "Tref": Tref, "Rref": Rref, "sT_ref": sT1 / math.sqrt(nref),
+    info = {"N": N, "phi": c["phi"], "mft0": mft0, "Tref": Tref, "Rref": Rref, "sT_ref": sT1 / math.sqrt(nref),
             "sR_ref": sR1 / math.sqrt(nref), "sT1": sT1, "sR1": sR1, "collision_times": ncoll_times}
     ntest = len(test_seeds)
     sigT = sT1 * math.sqrt(1.0 / ntest + 1.0 / nref)
@@ -426,7 +427,7 @@ def driven_scene(phi, S, work, bar):
         return sT, sR
 
     sTref, sRref = sigma(len(Ts))
-    info = {"N": N, "mft": mft, "Tref": Tref, "Rref": Rref, "sT_ref": sTref, "sR_ref": sRref,
+    info = {"N": N, "phi": phi, "mft": mft, "Tref": Tref, "Rref": Rref, "sT_ref": sTref, "sR_ref": sRref,
             "tauT_mft": tauT * P / mft, "tauR_mft": tauR * P / mft, "tref_mft": tref / mft}
     base_ed = baseline("in.driven_ed", dict(law, data=data, mu=c["mu"], rtmax=c["rtmax"],
                                             series=os.path.join(work, "T.base")),
@@ -557,9 +558,8 @@ def core_floor(N, phi, size):
     mfts, rounds = {"smoke": (4, 2), "quick": (10, 3), "full": (20, 5)}[size]
     p = subprocess.run([exe, "2", str(N), f"{phi:g}", "10", str(mfts), str(rounds)],
                        capture_output=True, text=True, check=True)
-    words = p.stdout.split()
-    per_coll = float(words[words.index("per", words.index("no")) - 2]) * 1e-6
-    per_kick = float(words[words.index("kick") + 2]) * 1e-6
+    per_coll = float(re.search(r"([-+.\deE]+) us per collision", p.stdout)[1]) * 1e-6
+    per_kick = float(re.search(r"one kick costs ([-+.\deE]+) us per particle", p.stdout)[1]) * 1e-6
     return dict(coll=per_coll, kick=per_kick, line=p.stdout.strip())
 
 
@@ -812,8 +812,7 @@ def main(argv=None):
             if e and d:
                 ratios.append(f"{scene} ({what}): soft DEM {label(d)}, {d['cost']:.3g} s / exact ED "
                               f"{label(e)}, {e['cost']:.3g} s = **{d['cost'] / e['cost']:.0f}**")
-                phi = COOL["phi"] if scene == "cooling" else float(scene.split()[1])
-                key = (infos[scene]["N"], phi)
+                key = (infos[scene]["N"], infos[scene]["phi"])
                 if key not in floors:
                     floors[key] = core_floor(*key, size)
                 if floors[key]:
