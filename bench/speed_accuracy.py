@@ -102,9 +102,9 @@ def soft_params(tc, r, rt, q, m=1.0):
       (overlap 0, no limit_damping) after tc with g_n' = -r g_n exactly (up to the time step).
     tangential (linear_history kt, no tangential damping): while the contact sticks the
       tangential contact displacement is an undamped oscillator of effective mass
-      m_t = m_n q/(1+q) (physics notes), so after tc the tangential contact velocity is
-      g_t cos(omega_t tc) = -rt g_t for omega_t tc = arccos(-rt): kt = m_t (arccos(-rt)/tc)^2,
-      i.e. kt/kn = q/(1+q) (1 - zeta^2) (arccos(-rt)/pi)^2.
+      m_t = m_n q/(1+q) (doc/conventions.rst, "The collision map"), so after tc the tangential
+      contact velocity is g_t cos(omega_t tc) = -rt g_t for omega_t tc = arccos(-rt):
+      kt = m_t (arccos(-rt)/tc)^2, i.e. kt/kn = q/(1+q) (1 - zeta^2) (arccos(-rt)/pi)^2.
     The spring energy left in the tangential spring when the contact opens is lost, which is
     what makes rt < 1. A Coulomb limit mu (finite) lets the contact slide (Walton law only in
     its limits; see the doc page)."""

@@ -1,5 +1,5 @@
 /* ----------------------------------------------------------------------
-   GRANFRIC: compute hardsphere/temp. Temperatures per degree of freedom (physics-notes.md):
+   GRANFRIC: compute hardsphere/temp. Temperatures per degree of freedom (doc/conventions.rst):
    2d: T_tr = E_tr/(N k_B), T_rot = 2 E_rot/(N k_B) (one spin dof, about z);
    3d: T_tr = 2 E_tr/(3 N k_B), T_rot = 2 E_rot/(3 N k_B). E_rot uses I = q m a^2 with q of the
    hardsphere pair style (or the inertia keyword), not LAMMPS's fixed 2/5.

@@ -1,7 +1,7 @@
 """Homogeneous cooling of rough spheres and discs with constant normal and tangential restitution
 (Luding, Huthmann, McNamara & Zippelius 1998; Herbst et al. 2005 model A with no driving).
 
-Conventions of shared/design/physics-notes.md: temperatures per degree of freedom (k_B = 1);
+Conventions of doc/conventions.rst: temperatures per degree of freedom (k_B = 1);
 2D (spin about z, one rotational dof): T_tr = E_tr/N, T_rot = 2 E_rot/N; 3D: T_tr = 2E_tr/(3N),
 T_rot = 2E_rot/(3N). q = I/(m a^2) is independent of the dimension.
 
@@ -14,7 +14,8 @@ Mean-field equations (Gaussian velocities, molecular chaos), eta = q (1 + rt) / 
       G = 32 sqrt(pi/m) a^2 n g3(2a), Carnahan-Starling g3 = (1 - nu/2)/(1 - nu)^3
 In both, the collision frequency per particle is G T_tr^1/2 / 2. The coefficients follow from the
 averages of the translational and rotational energy changes of the collision map over Gaussian
-velocities, weighted with the normal relative speed (derivation in doc/theory_cooling.md).
+velocities, weighted with the normal relative speed (the collision map and the temperatures are
+those of doc/conventions.rst).
 """
 import math
 from dataclasses import dataclass

@@ -37,7 +37,7 @@ def frictionless_dE(q, T0=1.0):
 
 def q_eff(dE, T0=1.0):
     """Risso eq 9: q_eff = (1 - sqrt(1 + <dE>/T0)) / 2; None ("undefined") where <dE> < -T0
-    (physics-notes item 10)."""
+    (doc/conventions.rst, correction 10)."""
     x = 1.0 + dE / T0
     if x < 0.0:
         return None

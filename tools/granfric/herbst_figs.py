@@ -1,7 +1,7 @@
 """Figures 2, 3 and 5-11 of Herbst, Cafiero, Zippelius, Herrmann & Luding, Phys. Fluids 17,
 107102 (2005): GRANFRIC simulations of the randomly driven monolayer (examples/driven, through
 granfric.herbst.simulate) against the mean-field models A-E (granfric.meanfield), with the
-equation corrections of shared/design/physics-notes.md.
+equation corrections of doc/conventions.rst.
 
     fig2_rt_vs_gamma.png      rt(gamma) of the Walton law: the C++ law (core.collide) vs eqs 5-6
     fig3_p_gamma.png          impact-angle distribution P(gamma): simulation vs eq 12
@@ -887,7 +887,7 @@ def report_section(res):
                      f"{w['delta']:.3f} ± {w['delta_err']:.3f} | {PAPER['delta'].get(w['r'], '-')} | "
                      f"{w['delta_E']:.3f} | {w['delta_C']:.3f} | {w['chi2_red']:.2f} |")
     L += ["", "Model E: R → (1 + r) μ (eq 42, δ = 1); models B, C: R ∝ μ |ln μ|; D: μ/|ln μ| "
-          "(physics-notes correction 7).", ""]
+          "(doc/conventions.rst, correction 7).", ""]
     f10 = res["fig10"]
     L += [f"### Fig. 10 (`{FIGS[7]}`): relaxation rates", "",
           "The paper's Fig. 10 plots the two rates of model A against rt_max at r = 0.95 (not "

@@ -2,7 +2,7 @@
 Herbst, Cafiero, Zippelius, Herrmann & Luding, Phys. Fluids 17, 107102 (2005), models A-E, plus
 the 3D homogeneous-cooling form of model E (appendix A23-A24).
 
-Conventions (shared/design/physics-notes.md, granfric.cooling): temperatures per degree of freedom,
+Conventions (doc/conventions.rst, granfric.cooling): temperatures per degree of freedom,
 k_B = 1. 2D monolayer, spin about z only: T_tr = E_tr/N, T_rot = 2 E_rot/N; R = T_rot/T_tr.
 q = I/(m a^2) is free (spheres 2/5, discs 1/2).
 
@@ -23,7 +23,7 @@ eta0/c = mu (1+r)/2. x^2 = 1 + R/q (eq 27), f = sqrt(1+c^2) (eq 24), f~ = sqrt(1
 mu = inf gives c = 0 and every model reduces to model A; mu = 0 (or rt_max = -1) gives smooth
 particles (A = A_r, B = B' = C = 0).
 
-Corrections of shared/design/physics-notes.md applied here:
+Corrections of doc/conventions.rst ("Corrections to the printed equations") applied here:
   1. eq 4: Delta P_t = -(m/2) q/(1+q) (1+rt) g_t (factor m/2) -- the collision map behind all
      coefficients (checked against the C++ law by Monte Carlo in the tests).
   2. eq 40: I = A_r + eta0(1-eta0)/2 - eta0^3/(2(q-eta0)) (plus sign on the middle term).

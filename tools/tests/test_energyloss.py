@@ -20,7 +20,8 @@ def test_monte_carlo_equals_closed_form(kappa, q):
 
 
 def test_maximum_loss_near_kappa_0p3():
-    # Risso et al.: for fixed q the loss |<dE>| is largest at kappa ~ 0.3 (physics-notes: 0.26-0.33)
+    # Risso et al.: for fixed q the loss |<dE>| is largest at kappa ~ 0.3 (0.26-0.33 with the
+    # averaging of doc/conventions.rst, correction 9)
     for q in (0.0, 0.025, 0.1):
         k = energyloss.kappa_of_max_loss(q)
         assert 0.2 < k < 0.4, (q, k)

@@ -1,7 +1,7 @@
 """Driven 2D mean-field theory of Herbst et al. 2005, models A-E (granfric.meanfield): limits,
-small-mu scaling (physics-notes item 7), steady states, relaxation rates, the coefficients'
-defining averages by quadrature, and <dE> per collision against Monte Carlo through the C++
-Walton law."""
+small-mu scaling (doc/conventions.rst, correction 7), steady states, relaxation rates, the
+coefficients' defining averages by quadrature, and <dE> per collision against Monte Carlo through
+the C++ Walton law."""
 import math
 
 import numpy as np
@@ -69,7 +69,7 @@ def test_model_E_approaches_model_A_at_large_mu(r, rt, q):
 
 @pytest.mark.parametrize("r,rt", [(0.95, 0.4), (0.99, 1.0)])
 def test_small_mu_scaling_of_R(r, rt):
-    """Physics-notes item 7 over mu in [1e-4, 1e-2] (q = 2/5):
+    """Correction 7 of doc/conventions.rst over mu in [1e-4, 1e-2] (q = 2/5):
     E ~ (1+r) mu; B, C ~ mu|ln mu|; D ~ (1+r) mu/|ln mu|.
     Leading behaviour: fitted exponent p of |ln mu| in R/mu = const |ln mu|^p (log-log fit of R/mu
     against |ln mu|): E 0 +- 0.05, B and C +1 +- 0.2, D -1 +- 0.5 (the logarithmic corrections

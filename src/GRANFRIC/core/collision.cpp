@@ -1,4 +1,4 @@
-// GRANFRIC physics core: the collision map (Walton form, see collision.h and physics-notes.md).
+// GRANFRIC physics core: the collision map (Walton form, see collision.h and doc/conventions.rst).
 #include "collision.h"
 
 #include <algorithm>

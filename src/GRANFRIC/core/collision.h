@@ -1,6 +1,6 @@
 // GRANFRIC physics core: instantaneous collision laws for rough hard spheres and discs.
 //
-// Conventions (shared/design/physics-notes.md): n points from body 2 to body 1, the contact-point
+// Conventions (doc/conventions.rst): n points from body 2 to body 1, the contact-point
 // velocity is g = v1 - v2 - (a1 w1 + a2 w2) x n, the pair approaches iff g.n < 0. The shape factor
 // q = I/(m a^2) is per body (2/5 sphere, 1/2 disc). 2D is the same code with z components zero
 // (spins along z only stay along z). A wall is a body of infinite mass and radius with its own

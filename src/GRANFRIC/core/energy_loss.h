@@ -1,6 +1,6 @@
 // GRANFRIC physics core: Monte Carlo mean energy change per collision over a Maxwellian,
 // through the same collision law the simulations use (Risso et al. 2005, Sec. II; the
-// conventions of physics-notes.md item 9): equal particles, velocities Gaussian at T0 per
+// doc/conventions.rst, correction 9): equal particles, velocities Gaussian at T0 per
 // component, spins Gaussian with I <w^2> = T0 per spin component, collisions weighted by the
 // normal relative speed (only approaching pairs).
 #ifndef GRANFRIC_CORE_ENERGY_LOSS_H
