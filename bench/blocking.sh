@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# What processing one system in cache-sized spatial blocks could give (issue 3, the flat cost per
-# collision): bench_core at N = 10^6 as one system, as K independent blocks (the ideal: no shell),
-# and as blocks that carry the shell of copies an exact window needs (a lower bound for any exact
-# blocked scheme), against N = 10^3; interleaved rounds, the fastest of each configuration. Prints
-# every run and a table of factors over N = 10^3. Not a test: about 10 minutes a round.
+# What processing one system in cache-sized spatial blocks could give towards a cost per
+# collision that stays flat from N = 10^3 to 10^6: bench_core at N = 10^6 as one system, as K
+# independent blocks (the ideal: no shell), and as blocks that carry the shell of copies an exact
+# window needs (a lower bound for any exact blocked scheme), against N = 10^3; interleaved rounds,
+# the fastest of each configuration. Prints every run and a table of factors over N = 10^3 (the
+# spatial-blocking table of bench/README.md). Not a test: about 10 minutes a round.
 #   bash bench/blocking.sh [build dir] [rounds]            (default: build/, 3 rounds)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)

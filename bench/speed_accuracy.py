@@ -1,5 +1,5 @@
-"""GRANFRIC benchmark, issue 7 ("Speed against accuracy"): CPU cost against accuracy of three ways
-to simulate the same granular gas, on two scenes:
+"""GRANFRIC benchmark "Speed against accuracy" (bench/README.md): CPU cost against accuracy of three
+ways to simulate the same granular gas, on two scenes:
 
   cooling  Luding et al. 1998: free cooling of rough discs (q = 1/2) in 2D, constant normal
            restitution r = 0.9 and tangential restitution beta = 0, area fraction 0.05; compared

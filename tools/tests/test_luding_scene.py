@@ -34,7 +34,7 @@ _cache = {}
 
 
 def runs(dim, beta, tmp_path_factory):
-    """The ED runs of a case (one set per test session, shared by the tests below)."""
+    """The ED runs of a case (one set per test run, shared by the tests below)."""
     if (dim, beta) not in _cache:
         tmp = tmp_path_factory.mktemp(f"cool{dim}d_b{beta}")
         _cache[(dim, beta)] = [luding.simulate(dim, 0.9, beta, 0.05, 20.0, str(tmp / f"log.{s}"), seed=s)

@@ -1,4 +1,4 @@
-"""bench/speed_accuracy (issue 7): the soft-sphere mapping and a smoke run of the benchmark.
+"""bench/speed_accuracy (speed against accuracy): the soft-sphere mapping and a smoke run of the benchmark.
 
 The mapping (bench/speed_accuracy.py, soft_params; doc/choosing_a_method.rst) claims, for
 pair_style granular with a hooke spring, coeff_restitution damping and a linear_history
