@@ -10,7 +10,7 @@ Two theories (examples/cooling/README.md):
   the true T_rot by +2.6/+1.1/+3.2 % at t = 11 and +3.4/+1.8/+4.0 % at t = 18 (2D beta = 0,
   2D beta = 0.5, 3D beta = 0), and R likewise. T_rot and R are therefore held to 5 % of the mean
   field here, the measured state.
-- the kinetic theory itself (DSMC), which the simulation must follow within 3 % (the issue's
+- the kinetic theory itself (DSMC), which the simulation must follow within 3 % (the acceptance
   criterion) in T_tr, T_rot and R, established at 2 sigma: over blocks of the window, the
   block-averaged deviation plus twice its standard error (the seeds' scatter of the block
   averages, and DSMC's) must stay below 3 %, with standard errors below 0.75 % (measured
