@@ -6,6 +6,7 @@
 
 #include "vec3.h"
 
+#include <cmath>
 #include <limits>
 
 namespace granfric {
@@ -20,13 +21,15 @@ inline double pair_contact_time(double r0, double r1, double r2, double v0, doub
                                 double sigma)
 {
   const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
-  if (b >= 0.0) return NEVER;
   const double w2 = DIM == 3 ? v0 * v0 + v1 * v1 + v2 * v2 : v0 * v0 + v1 * v1;
   const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
   const double disc = b * b - w2 * c;
-  if (disc < 0.0) return NEVER;
-  const double tau = c / (-b + std::sqrt(disc));    // stable form of (-b - sqrt(disc))/v2
-  return tau > 0.0 ? tau : 0.0;
+  // Without branches: whether a candidate approaches (b < 0) and meets (disc >= 0) is a coin
+  // toss, which a branch predictor gets wrong about half the time. The root is computed for
+  // every candidate (from a harmless operand where there is none) and the answer selected.
+  const bool meet = (b < 0.0) & (disc >= 0.0);
+  const double tau = c / (-b + std::sqrt(meet ? disc : 1.0));    // stable form of (-b - sqrt(disc))/v2
+  return meet ? (tau > 0.0 ? tau : 0.0) : NEVER;
 }
 
 inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
