@@ -255,6 +255,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // every rank takes the cell width of the whole system (the same number of cells in a
   // dimension a rank covers whole, so that copies cross cells where their owners do: fewer
   // rounding differences between them), not that of its region with its empty margins
+  // (cells: a kept core takes its copies' states from their owners by nudge(), which lists refuse)
+  o.neighbours = granfric::EDOptions::CELLS;
   if (dim == 2 && domain->prd[0] * domain->prd[1] > 0.0)
     o.cell_width = granfric::EventDriven::auto_cell_width(
         2, 2.0 * gmx[1] * (1.0 + 1e-10), (double) atom->natoms / (domain->prd[0] * domain->prd[1]));

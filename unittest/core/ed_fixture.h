@@ -6,6 +6,7 @@
 #include "reference_ed.h"
 
 #include <cmath>
+#include <functional>
 #include <random>
 #include <stdexcept>
 
@@ -86,9 +87,13 @@ struct CoreRun {
   EDStats total;
   double time = 0.0;
 
-  explicit CoreRun(const Reference &ref, long cap = 1000000)
+  // neighbours, skin: how the core finds candidates (EDOptions::neighbours, list_skin)
+  explicit CoreRun(const Reference &ref, long cap = 1000000, int neighbours = EDOptions::AUTO,
+                   double skin = 0.0)
   {
     EDOptions o;
+    o.neighbours = neighbours;
+    o.list_skin = skin;
     o.dim = ref.dim;
     for (int d = 0; d < 3; d++) {
       o.lo[d] = ref.lo[d];
@@ -144,6 +149,47 @@ struct CoreRun {
     while (time < T - 1e-12 * T) window(std::min(dt, T - time));
   }
 };
+
+// the reference's kicks in the window [t0, t0 + dt) as the core's global events of that window,
+// each adding dv(e, k) to the velocity of particle e (k: the kick's index in the reference)
+inline void window_kicks(EventDriven &ed, const Reference &ref, double t0, double dt,
+                         std::function<Vec3(int, int)> dv)
+{
+  std::vector<double> times;
+  std::vector<int> index;
+  for (size_t k = 0; k < ref.kick_times.size(); k++)
+    if (ref.kick_times[k] >= t0 && ref.kick_times[k] < t0 + dt) {
+      times.push_back(ref.kick_times[k] - t0);
+      index.push_back((int) k);
+    }
+  ed.set_global_events(times, [&ed, index, dv](int g) {
+    for (int e = 0; e < ed.size(); e++) ed.particle(e).v += dv(e, index[g]);
+  });
+}
+
+// one law of each kind, for tests over every law (0 rough, 1 Walton, 2 Jenkins-Zhang)
+inline LawParams law_of(int k)
+{
+  switch (k) {
+    case 0: return LawParams::rough(0.9, 0.4);
+    case 1: return LawParams::walton(0.85, 0.3, 0.5);
+    default: return LawParams::jz(0.05, 0.1, 0.2, 0.2);
+  }
+}
+
+// mean free time of a system, N T / (2 collisions), from the shortest core run of doubling
+// length T with at least max(4, N) collisions (inelastic systems cool, so the estimate must
+// come from the first collisions)
+inline double mean_free_time(const Reference &ref)
+{
+  const long need = std::max<long>(4, (long) ref.p.size());
+  for (double T = 1e-3;; T *= 2.0) {
+    CoreRun probe(ref);
+    probe.window(T);
+    if (probe.total.collisions >= need || T > 1e6)
+      return ref.p.size() * T / (2.0 * std::max<long>(1, probe.total.collisions));
+  }
+}
 
 }    // namespace granfric_test
 

@@ -12,29 +12,6 @@ using namespace granfric_test;
 
 namespace {
 
-LawParams law_of(int k)
-{
-  switch (k) {
-    case 0: return LawParams::rough(0.9, 0.4);
-    case 1: return LawParams::walton(0.85, 0.3, 0.5);
-    default: return LawParams::jz(0.05, 0.1, 0.2, 0.2);
-  }
-}
-
-// mean free time of a system, N T / (2 collisions), from the shortest core run of doubling
-// length T with at least max(4, N) collisions (inelastic systems cool, so the estimate must
-// come from the first collisions)
-double mean_free_time(const Reference &ref)
-{
-  const long need = std::max<long>(4, (long) ref.p.size());
-  for (double T = 1e-3;; T *= 2.0) {
-    CoreRun probe(ref);
-    probe.window(T);
-    if (probe.total.collisions >= need || T > 1e6)
-      return ref.p.size() * T / (2.0 * std::max<long>(1, probe.total.collisions));
-  }
-}
-
 // Largest deviation from the reference: positions absolute (unit diameter scale), velocities and
 // contact-point spin speeds a w relative to the rms speed.
 // Trajectories of hard-sphere gases are chaotic, so differences in the last bit (the reference
@@ -181,12 +158,16 @@ Vec3 test_kick(int e, int k, double s)
 // windows refresh the copies of other ranks' atoms): velocities of a changing subset are
 // altered at every window boundary, other particles are taken out and put back unchanged;
 // the trajectory equals the brute-force reference with the same changes as instant events.
+// (2D and 3D with cells under gravity; 3D with neighbour lists, which take no gravity and no
+// nudges: the changed particles re-enter the lists around their new centres)
 TEST(EventDriven, ChangesBetweenWindowsEqualReference)
 {
-  for (int dim = 2; dim <= 3; dim++) {
+  for (int config = 0; config < 3; config++) {
+    const int dim = config == 0 ? 2 : 3;
+    const bool lists = config == 2;
     const SystemSpec s = spec_of(140, dim, 0.25, 311 + dim);
     Reference ref = make_system(s, LawParams::walton(0.85, 0.3, 0.5));
-    ref.gravity = dim == 2 ? Vec3(0.2, -0.7, 0.0) : Vec3(0.1, -0.3, -0.6);
+    if (!lists) ref.gravity = dim == 2 ? Vec3(0.2, -0.7, 0.0) : Vec3(0.1, -0.3, -0.6);
     ref.tc = 0.005;
     const double mft = mean_free_time(ref);
     const double dt = 0.43 * mft;
@@ -202,9 +183,10 @@ TEST(EventDriven, ChangesBetweenWindowsEqualReference)
       for (size_t e = 0; e < ps.size(); e++)
         if (kicked((int) e, k + 1)) ps[e].v += dv((int) e, k + 1);
     };
-    CoreRun run(ref);
+    CoreRun run(ref, 1000000, lists ? EDOptions::LISTS : EDOptions::CELLS);
     EventDriven &ed = run.ed;
     ed.start();
+    EXPECT_EQ(ed.uses_lists(), lists);
     long changed = 0;
     for (int w = 0; w < nwin; w++) {
       if (w > 0) {
@@ -215,6 +197,8 @@ TEST(EventDriven, ChangesBetweenWindowsEqualReference)
           const Vec3 x = ed.position(e, 0.0), v = ed.velocity(e, 0.0);
           if (out) ed.remove(e);
           EXPECT_EQ(ed.present(e), !out);
+          const double xs[3] = {x.x, x.y, x.z}, vs[3] = {v.x, v.y, v.z}, ws[3] = {0, 0, 0};
+          if (lists) EXPECT_FALSE(ed.nudge(e, xs, vs, ws)) << "lists take no nudges";
           p.x = x;
           p.v = k ? v + dv(e, w) : v;
           ed.changed(e);
@@ -421,17 +405,7 @@ TEST(EventDriven, GlobalKicksEqualReference)
     double t0 = 0.0, injected = 0.0;
     const int nwin = (int) std::floor(6 * mft / dt);
     for (int w = 0; w < nwin; w++) {
-      std::vector<double> times;
-      std::vector<int> index;
-      for (size_t k = 0; k < ref.kick_times.size(); k++)
-        if (ref.kick_times[k] >= t0 && ref.kick_times[k] < t0 + dt) {
-          times.push_back(ref.kick_times[k] - t0);
-          index.push_back((int) k);
-        }
-      EventDriven &ed = run.ed;
-      run.ed.set_global_events(times, [&](int g) {
-        for (int e = 0; e < ed.size(); e++) ed.particle(e).v += dv(e, index[g]);
-      });
+      window_kicks(run.ed, ref, t0, dt, dv);
       const EDStats st = run.ed.advance_to(dt);
       run.total.add(st);
       injected += st.injected;

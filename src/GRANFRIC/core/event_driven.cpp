@@ -61,6 +61,11 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
     walled[w.dim] = true;
   }
   if (o.walls.size() > 100) throw std::invalid_argument("at most 100 walls");
+  if (o.neighbours < EDOptions::AUTO || o.neighbours > EDOptions::LISTS)
+    throw std::invalid_argument("neighbours must be AUTO, CELLS or LISTS");
+  if (o.neighbours == EDOptions::LISTS && norm2(o.gravity) != 0.0)
+    throw std::invalid_argument("neighbour lists do not work with gravity: use cells");
+  if (!(o.list_skin >= 0.0)) throw std::invalid_argument("the list skin must be >= 0");
   if (o.max_collisions < 1 || o.max_collisions > 2000000000L)
     throw std::invalid_argument("the collision cap per particle and window must be 1 to 2e9");
   for (int d = 0; d < o.dim; d++)
@@ -86,7 +91,8 @@ bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<La
   if (o.dim != opt.dim || nt != ntypes || !same_laws(table, laws) ||
       o.gravity.x != opt.gravity.x || o.gravity.y != opt.gravity.y || o.gravity.z != opt.gravity.z ||
       o.tc != opt.tc || o.max_collisions != opt.max_collisions || o.gamma_bins != opt.gamma_bins ||
-      o.cell_width != opt.cell_width ||
+      o.cell_width != opt.cell_width || o.neighbours != opt.neighbours ||
+      o.list_skin != opt.list_skin ||
       o.walls.size() != opt.walls.size() ||
       shape_table(o, nt) != qt)
     return false;
@@ -127,6 +133,10 @@ void EventDriven::resize(int n)
   S.assign(n, Sched());
   WT.clear();
   img.assign(n, Image{{0, 0, 0}, -1});
+  lists = false;
+  XN.clear();
+  NB.clear();
+  NN.clear();
   ext.resize(n);
   loc.resize(n);
   for (int i = 0; i < n; i++) ext[i] = loc[i] = i;
@@ -193,6 +203,23 @@ void EventDriven::renumber(const std::vector<int> &order)
       for (int k = 0; k < n; k++) W[k] = TL[order[k]];
       TL.swap(W);
     }
+    if (lists) {
+      big_vector<Vec3> X(n);
+      big_vector<Entry> B((size_t) n * LCAP);
+      big_vector<uint8_t> N(n);
+      for (int k = 0; k < n; k++) {
+        const int o = order[k];
+        X[k] = XN[o];
+        N[k] = NN[o];
+        for (int m = 0; m < NN[o]; m++) {
+          const Entry e = NB[(size_t) o * LCAP + m];
+          B[(size_t) k * LCAP + m] = (Entry) newloc[entry_j(e)] << 5 | (e & 31);
+        }
+      }
+      XN.swap(X);
+      NB.swap(B);
+      NN.swap(N);
+    }
     H.swap(Q);
     C.swap(K);
     S.swap(T);
@@ -230,7 +257,9 @@ void EventDriven::setup_cells()
     }
   const double sigma = 2.0 * amax * (1.0 + 1e-10);
   double width = sigma;
-  if (opt.cell_width > 0.0) {
+  if (lists) {
+    width = std::max(std::sqrt(lrad2), opt.cell_width);    // (cells only build the lists)
+  } else if (opt.cell_width > 0.0) {
     width = std::max(sigma, opt.cell_width);
   } else if (opt.dim == 2 && L[0] * L[1] > 0.0) {
     width = auto_cell_width(2, sigma, present / (L[0] * L[1]));
@@ -272,7 +301,7 @@ void EventDriven::setup_cells()
 
 void EventDriven::place(int i)
 {
-  const Hot &p = H[i];
+  const Vec3 &x = lists ? XN[i] : H[i].x;    // (with lists: the list centre)
   Sched &s = S[i];
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -281,7 +310,7 @@ void EventDriven::place(int i)
       continue;
     }
     int c, k;
-    locate(d, p.x[d], c, k);
+    locate(d, x[d], c, k);
     img[i].k[d] = k;
     s.c[d] = (int16_t) c;
   }
@@ -399,6 +428,53 @@ void EventDriven::scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3
   }
 }
 
+// one candidate j of i at the image shift o (j's position + o L): its contact time, kept as
+// i's collision candidate when it is the earliest so far (i's state xi, vi now, its radius pa)
+template <int DIM, bool GRAV>
+inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, const Vec3 &xi,
+                                                              const Vec3 &vi, double pa, int j,
+                                                              int o0, int o1, int o2)
+{
+  const Hot &q = H[j];
+  const Vec3 g = opt.gravity;
+  const double dtj = now - q.t;
+  double x0 = q.x.x + dtj * q.v.x, x1 = q.x.y + dtj * q.v.y;
+  double x2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
+  double v0 = q.v.x, v1 = q.v.y, v2 = DIM == 3 ? q.v.z : 0.0;
+  if (o0 | o1 | o2) {
+    x0 += o0 * L.x;
+    x1 += o1 * L.y;
+    if (DIM == 3) x2 += o2 * L.z;
+  }
+  if (GRAV) {
+    const double h = 0.5 * dtj * dtj;
+    x0 += h * g.x;
+    x1 += h * g.y;
+    v0 += dtj * g.x;
+    v1 += dtj * g.y;
+    if (DIM == 3) {
+      x2 += h * g.z;
+      v2 += dtj * g.z;
+    }
+  }
+  const double t = now + pair_contact_time<DIM>(xi.x - x0, xi.y - x1, xi.z - x2, vi.x - v0,
+                                                vi.y - v1, DIM == 3 ? vi.z - v2 : 0.0, pa + q.a);
+  if (t < s.ct) {
+    // two particles whose last collisions were with each other (same periodic image)
+    // separate in free flight: relative motion is a straight line, they are no candidates
+    // (tested only here, for a would-be candidate: the same outcome as skipping them)
+    if (C[i].last_partner == j && C[j].last_partner == i && o0 == s.last_off[0] &&
+        o1 == s.last_off[1] && o2 == s.last_off[2])
+      return;
+    s.ct = t;
+    s.cpartner = j;
+    s.ccount = C[j].ncoll;
+    s.coff[0] = o0;
+    s.coff[1] = o1;
+    s.coff[2] = o2;
+  }
+}
+
 // scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,
 // dhi = -1, +1 in every dimension) or not, known at compile time. In 2d nothing
 // moves in z (v.z = 0, g.z = 0): the z terms of the relative motion vanish except the constant
@@ -407,55 +483,9 @@ void EventDriven::scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3
 template <int DIM, bool GRAV, bool FULL>
 void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
 {
-  const Hot *HH = H.data();
-  const double pa = HH[i].a;
   Sched &s = S[i];
-  const int *pk = img[i].k;
-  const Vec3 g = opt.gravity;
-  // one candidate j in the cell at image shift (kx, ky, kz) from i's
-  auto test = [&](int j, int kx, int ky, int kz) __attribute__((always_inline)) {
-    const Hot &q = HH[j];
-    const int *qk = img[j].k;
-    const int o0 = pk[0] + kx - qk[0], o1 = pk[1] + ky - qk[1];
-    const int o2 = DIM == 3 ? pk[2] + kz - qk[2] : 0;
-    const double dtj = now - q.t;
-    double x0 = q.x.x + dtj * q.v.x, x1 = q.x.y + dtj * q.v.y;
-    double x2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
-    double v0 = q.v.x, v1 = q.v.y, v2 = DIM == 3 ? q.v.z : 0.0;
-    if (o0 | o1 | o2) {
-      x0 += o0 * L.x;
-      x1 += o1 * L.y;
-      if (DIM == 3) x2 += o2 * L.z;
-    }
-    if (GRAV) {
-      const double h = 0.5 * dtj * dtj;
-      x0 += h * g.x;
-      x1 += h * g.y;
-      v0 += dtj * g.x;
-      v1 += dtj * g.y;
-      if (DIM == 3) {
-        x2 += h * g.z;
-        v2 += dtj * g.z;
-      }
-    }
-    const double t = now + pair_contact_time<DIM>(xi.x - x0, xi.y - x1, xi.z - x2, vi.x - v0,
-                                                  vi.y - v1, DIM == 3 ? vi.z - v2 : 0.0, pa + q.a);
-    if (t < s.ct) {
-      // two particles whose last collisions were with each other (same periodic image)
-      // separate in free flight: relative motion is a straight line, they are no candidates
-      // (tested only here, for a would-be candidate: the same outcome as skipping them)
-      const Cold *CC = C.data();
-      if (CC[i].last_partner == j && CC[j].last_partner == i && o0 == s.last_off[0] &&
-          o1 == s.last_off[1] && o2 == s.last_off[2])
-        return;
-      s.ct = t;
-      s.cpartner = j;
-      s.ccount = CC[j].ncoll;
-      s.coff[0] = o0;
-      s.coff[1] = o1;
-      s.coff[2] = o2;
-    }
-  };
+  const double pa = H[i].a;
+  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
   const int16_t *c = s.c;
   const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
   const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
@@ -484,7 +514,8 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
       }
     for (int f = 0; f < nfirst; f++)
       for (int j = first[f]; j >= 0; j = IM[j].next)
-        if (j != i) test(j, 0, 0, 0);
+        if (j != i) offer<DIM, GRAV>(i, s, xi, vi, pa, j, pk[0] - IM[j].k[0], pk[1] - IM[j].k[1],
+                                     DIM == 3 ? pk[2] - IM[j].k[2] : 0);
     return;
   }
   for (int dz = zlo; dz <= zhi; dz++) {
@@ -501,9 +532,33 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = img[j].next)
-          if (j != i) test(j, kx, ky, kz);
+          if (j != i) offer<DIM, GRAV>(i, s, xi, vi, pa, j, pk[0] + kx - img[j].k[0], pk[1] + ky - img[j].k[1],
+                                       DIM == 3 ? pk[2] + kz - img[j].k[2] : 0);
       }
     }
+  }
+}
+
+// collision candidates of i among its listed neighbours (no gravity with lists)
+void EventDriven::scan_list(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  // the cell shift of an entry's code, one per component
+  static constexpr int8_t KX[27] = {-1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1};
+  static constexpr int8_t KY[27] = {-1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1};
+  static constexpr int8_t KZ[27] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+  Sched &s = S[i];
+  const double pa = H[i].a;
+  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
+  const Entry *e = &NB[(size_t) i * LCAP];
+  const int n = NN[i];
+  const Image *IM = img.data();
+  for (int m = 0; m < n; m++) {
+    const int j = entry_j(e[m]), c = (int) (e[m] & 31);
+    const int *qk = IM[j].k;
+    if (opt.dim == 3)
+      offer<3, false>(i, s, xi, vi, pa, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], pk[2] + KZ[c] - qk[2]);
+    else
+      offer<2, false>(i, s, xi, vi, pa, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], 0);
   }
 }
 
@@ -564,8 +619,35 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
 // computed once and offered to both partners (the same time: both see one number). With fewer
 // than three cells in a dimension a neighbour cell can be reached at two image shifts, and every
 // particle scans its neighbourhood itself, as predict() does.
+// the contact time of i and j seen from i at the image shift o (j's position + o L), offered to
+// both as their collision candidate; every particle is at time now (its x and v are current)
+void EventDriven::offer_both(int i, int j, int o0, int o1, int o2)
+{
+  const Hot &p = H[i], &q = H[j];
+  Vec3 xj = q.x;
+  if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
+  const double t = now + pair_contact_time(p.x - xj, p.v - q.v, p.a + q.a);
+  Sched &si = S[i], &sj = S[j];
+  if (t < si.ct) {
+    si.ct = t;
+    si.cpartner = j;
+    si.ccount = C[j].ncoll;
+    si.coff[0] = o0, si.coff[1] = o1, si.coff[2] = o2;
+  }
+  if (t < sj.ct) {
+    sj.ct = t;
+    sj.cpartner = i;
+    sj.ccount = C[i].ncoll;
+    sj.coff[0] = -o0, sj.coff[1] = -o1, sj.coff[2] = -o2;
+  }
+}
+
 void EventDriven::predict_all()
 {
+  if (lists) {
+    predict_all_lists();
+    return;
+  }
   const int n = (int) H.size();
   bool half = true;
   for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
@@ -577,27 +659,6 @@ void EventDriven::predict_all()
     predict(i, !half);
   }
   if (!half) return;
-  // j seen from i at the image shift off (j's position + off * L); every particle is at time
-  // now (its x and v are current)
-  auto pair = [&](int i, int j, int o0, int o1, int o2) __attribute__((always_inline)) {
-    const Hot &p = H[i], &q = H[j];
-    Vec3 xj = q.x;
-    if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
-    const double t = now + pair_contact_time(p.x - xj, p.v - q.v, p.a + q.a);
-    Sched &si = S[i], &sj = S[j];
-    if (t < si.ct) {
-      si.ct = t;
-      si.cpartner = j;
-      si.ccount = C[j].ncoll;
-      si.coff[0] = o0, si.coff[1] = o1, si.coff[2] = o2;
-    }
-    if (t < sj.ct) {
-      sj.ct = t;
-      sj.cpartner = i;
-      sj.ccount = C[i].ncoll;
-      sj.coff[0] = -o0, sj.coff[1] = -o1, sj.coff[2] = -o2;
-    }
-  };
   // the forward half of the neighbourhood: 4 cells in 2d, 13 in 3d
   int fwd[13][3], nfwd = 0;
   for (int dz = 0; dz <= (opt.dim == 3 ? 1 : 0); dz++)
@@ -613,7 +674,7 @@ void EventDriven::predict_all()
     const int16_t *c = S[i].c;
     for (int j = img[i].next; j >= 0; j = img[j].next) {    // the rest of its own cell
       const int *qk = img[j].k;
-      pair(i, j, pk[0] - qk[0], pk[1] - qk[1], pk[2] - qk[2]);
+      offer_both(i, j, pk[0] - qk[0], pk[1] - qk[1], pk[2] - qk[2]);
     }
     bool inside = true;
     for (int d = 0; d < opt.dim; d++) inside = inside && c[d] >= 1 && c[d] + 1 < nc[d];
@@ -630,7 +691,7 @@ void EventDriven::predict_all()
       if (skip) continue;
       for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = img[j].next) {
         const int *qk = img[j].k;
-        pair(i, j, pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]);
+        offer_both(i, j, pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]);
       }
     }
   }
@@ -921,12 +982,18 @@ void EventDriven::predict(int i, bool pairs)
 {
   Sched &p = S[i];
   const Vec3 xi = pos(i, now), vi = vel(i, now);
-  predict_crossing(i, xi, vi);
+  if (lists)
+    predict_rebuild(i, xi, vi);
+  else
+    predict_crossing(i, xi, vi);
   predict_wall(i, xi, vi);
   p.ct = NEVER;
   p.cpartner = -1;
   if (!pairs) return;
-  scan_full(i, xi, vi);
+  if (lists)
+    scan_list(i, xi, vi);
+  else
+    scan_full(i, xi, vi);
 }
 
 // ---------------------------------------------------------------- events
@@ -1002,6 +1069,10 @@ void EventDriven::collide_pair(int i)
 
 void EventDriven::cross(int i)
 {
+  if (lists) {
+    list_rebuild(i);
+    return;
+  }
   const Hot &q = H[i];
   Sched &p = S[i];
   const int d = p.xdim, dir = p.xdir;
@@ -1051,8 +1122,13 @@ void EventDriven::start()
       C[i].w.x = C[i].w.y = 0.0;
     }
   }
+  double amax = 0.0;
+  for (int i = 0; i < n; i++)
+    if (!S[i].gone) amax = std::max(amax, H[i].a);
+  setup_lists(2.0 * amax * (1.0 + 1e-10));
   setup_cells();
   renumber(cell_order());
+  if (lists && !build_all_lists()) lists_to_cells();
   predict_all();
   std::vector<double> times(n);
   for (int i = 0; i < n; i++) times[i] = schedule(i);
@@ -1067,6 +1143,7 @@ void EventDriven::remove(int e)
   Sched &s = S[i];
   if (s.gone) return;
   if (started) {
+    if (lists) list_drop(i);
     cell_remove(i);
     queue.update(i, NEVER);
   }
@@ -1086,7 +1163,10 @@ void EventDriven::changed(int e)
   if (!started) throw std::logic_error("EventDriven::changed() before start()");
   if (!(p.a <= cell_amax))
     throw std::invalid_argument("a changed particle's radius exceeds what the cell grid admits");
-  if (!s.gone) cell_remove(i);
+  if (!s.gone) {
+    if (lists) list_drop(i);
+    cell_remove(i);
+  }
   s.gone = 0;
   p.t = now;
   c.ncoll++;    // every prediction that involved it is stale
@@ -1095,11 +1175,13 @@ void EventDriven::changed(int e)
     p.v.z = 0.0;
     c.w.x = c.w.y = 0.0;
   }
+  if (lists) XN[i] = p.x;
   place(i);
   cell_insert(i);
   no_events(i);
   queue.update(i, NEVER);    // until refresh() predicts it
   dirty.push_back(e);
+  if (lists && !list_build(i, false)) lists_to_cells();
 }
 
 bool EventDriven::nudge(int e, const double *x, const double *v, const double *w)
@@ -1108,7 +1190,7 @@ bool EventDriven::nudge(int e, const double *x, const double *v, const double *w
   Hot &p = H[i];
   const Sched &s = S[i];
   if (!started) throw std::logic_error("EventDriven::nudge() before start()");
-  if (s.gone) return false;
+  if (s.gone || lists) return false;
   for (int d = 0; d < opt.dim; d++) {    // the cell (and image) place() would give
     int c, k;
     locate(d, x[d], c, k);

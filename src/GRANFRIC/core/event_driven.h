@@ -3,8 +3,9 @@
 // Particles fly freely (uniform gravity allowed) and collide instantaneously through a
 // collision law (collision.h). Within a window [0, t_end) every pair collision is processed in
 // exact time order; then every particle is advanced to t_end. Candidate partners come from a
-// cell grid (cell width >= largest contact distance) kept exact by cell-crossing events, so no
-// pair can be missed whatever the window length. Per-particle local times and lazy updates, one
+// cell grid (cell width >= largest contact distance) kept exact by cell-crossing events, or, in
+// dense 3d systems, from neighbour lists kept exact by list-rebuild events (neighbour_lists.cpp),
+// so no pair can be missed whatever the window length. Per-particle local times and lazy updates, one
 // scheduled event per particle, invalidation by collision counters, a calendar queue
 // (event_queue.h), and the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
 // the window (periodic images are tracked by integer offsets, not by moving particles).
@@ -101,9 +102,17 @@ struct EDOptions {
   // > 0: cells at least this wide (never narrower than the largest contact distance); 0: the
   // automatic width (see setup_cells). For benchmarks of the cell width.
   double cell_width = 0.0;
+  // how candidate partners are found: CELLS (cell crossings), LISTS (neighbour lists; not with
+  // gravity) or AUTO (lists in small dense 3d systems without gravity, see choose_lists)
+  enum Neighbours { AUTO = 0, CELLS = 1, LISTS = 2 };
+  int neighbours = AUTO;
+  // > 0: the skin of neighbour lists in units of the largest contact distance sigma (lists hold
+  // the pairs whose list centres lie within sigma (1 + skin)); 0: the automatic skin
+  double list_skin = 0.0;
 };
 
 struct EDStats {
+  // (crossings: the neighbour structure's own events, cell crossings or list rebuilds)
   long collisions = 0, sliding = 0, tc_elastic = 0, energy_created = 0, crossings = 0;
   long max_collisions_one_particle = 0;
   double dE = 0.0;                      // sum of pair collision energy changes (< 0: dissipated)
@@ -197,6 +206,7 @@ class EventDriven {
   //                predictions of a particle stand when a cell crossing re-rounds its state.
   //                Only if the new position lies in the particle's cell (else nothing changes
   //                and it returns false: use changed()). The caller bounds the difference.
+  //                With neighbour lists it always returns false.
   void remove(int e);
   void changed(int e);
   bool nudge(int e, const double *x, const double *v, const double *w);
@@ -204,6 +214,7 @@ class EventDriven {
   // the largest radius the cell grid of the last start() admits
   double cell_radius() const { return cell_amax; }
   double cell_size() const { return cw[0]; }    // the cell width in x (after start())
+  bool uses_lists() const { return lists; }     // neighbour lists (after start())
   // the width of cells the core chooses for number density n (EDOptions::cell_width = 0), with
   // sigma the largest contact distance
   static double auto_cell_width(int dim, double sigma, double n);
@@ -254,6 +265,7 @@ class EventDriven {
     return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) +
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
+        XN.capacity() * sizeof(Vec3) + NB.capacity() * sizeof(Entry) + NN.capacity() +
         head.capacity() * sizeof(int) + queue.memory_bytes() +
         fast.capacity() * sizeof(fast[0]) + gtimes.capacity() * sizeof(double);
   }
@@ -394,6 +406,37 @@ class EventDriven {
   double cw[3] = {1, 1, 1};              // cell widths
   big_vector<int> head;                 // cell lists (singly linked through Image::next)
   double cell_amax = 0.0;                // largest radius the cells admit
+  // Neighbour lists (neighbour_lists.cpp): a particle lists every particle whose list centre lies
+  // within lrad of its own (its position when it last rebuilt its list), and rebuilds its list
+  // when it has moved lskin from its centre. With lrad = sigma + 2 lskin no pair outside the
+  // lists can touch before one of them rebuilds. The cells (at least lrad wide) then hold the
+  // particles by list centre and serve only to build lists; there are no crossings.
+  bool lists = false;
+  double lskin = 0.0, lrad2 = 0.0;       // lskin, and lrad squared
+  static constexpr int LCAP = 32;        // entries per list (more: cells from then on)
+  // a listed neighbour j and the cell shift k (kx, ky, kz in -1..1) at which it was found from
+  // i's cell, as j << 5 | (kx + 1) + 3 (ky + 1) + 9 (kz + 1): j's position + (pk + k - qk) L is
+  // the image next to i, with pk, qk the cell images of i and j (fixed until either rebuilds)
+  using Entry = uint32_t;
+  static int entry_j(Entry e) { return (int) (e >> 5); }
+  static Entry make_entry(int j, int kx, int ky, int kz)
+  {
+    return (Entry) j << 5 | (Entry) ((kx + 1) + 3 * (ky + 1) + 9 * (kz + 1));
+  }
+  static Entry mirror(Entry e, int i) { return (Entry) i << 5 | (26 - (e & 31)); }
+  big_vector<Vec3> XN;                   // list centres
+  big_vector<Entry> NB;                  // LCAP entries per particle
+  big_vector<uint8_t> NN;                // entries in use
+  static bool choose_lists(int dim, double sigma, double n, long count);
+  void setup_lists(double sigma);        // (in start(), before the cells)
+  void list_drop(int i);                 // i leaves its neighbours' lists; its list empties
+  bool list_build(int i, bool higher_only);    // false: a list would overflow
+  bool build_all_lists();                // every list from empty lists (false: an overflow)
+  void list_rebuild(int i);              // the rebuild event
+  void lists_to_cells();                 // after an overflow: cells from now on
+  void predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi);
+  void scan_list(int i, const Vec3 &xi, const Vec3 &vi);
+  void predict_all_lists();
   bool started = false;                  // start() done since resize()
   std::vector<int> dirty;                // external indices changed since the last window
   void refresh();                        // predictions of the dirty particles
@@ -414,6 +457,7 @@ class EventDriven {
   std::vector<int> cell_order() const;
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
+  void offer_both(int i, int j, int o0, int o1, int o2);
   // lazy state of internal particle i at window time t (inline: read for every candidate
   // partner and by the LAMMPS fix for every atom and step)
   Vec3 pos(int i, double t) const
@@ -451,6 +495,10 @@ class EventDriven {
   void scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
   template <int DIM, bool GRAV, bool FULL>
   void scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
+  // one candidate j of i (state xi, vi now) at the image shift o (j's position + o L)
+  template <int DIM, bool GRAV>
+  void offer(int i, Sched &s, const Vec3 &xi, const Vec3 &vi, double pa, int j, int o0, int o1,
+             int o2);
   double schedule(int i);                // ekind from the candidates; returns the event time
   void predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
   {

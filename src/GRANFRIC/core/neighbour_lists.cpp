@@ -1,0 +1,209 @@
+// GRANFRIC physics core: neighbour lists, the second way of finding collision candidates (see
+// event_driven.h). In a dense gas most particles of the 3^d cells around a particle are too far
+// to be its next partner; a list of the particles within sigma plus a skin holds about half as
+// many, and a particle rebuilds its list only when it has moved half the skin (lskin) from
+// where it built it. Rebuilding is symmetric: the particle leaves every list it was in and
+// enters the lists of its new neighbours, so a pair is listed by both partners or by neither,
+// and the cells hold particles by list centre, so they change only at rebuilds.
+#include "event_driven.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace granfric {
+
+
+// Lists pay in small dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to
+// about 12000 particles. Measured with bench_core against cells, elastic spheres at fraction
+// 0.45 (bench/README.md): 20 - 25 % faster at N = 4000 - 10000, with 37 % fewer instructions
+// per collision; 10 - 20 % slower at N = 32000, where the lists (about 150 more bytes per
+// particle) push the particles' records out of this machine's cache. At fraction 0.35 the
+// rebuilds cost as much as the shorter scans save; in 2d cells are cheaper.
+bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
+{
+  return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= 12000;
+}
+
+// Decide whether this start() uses lists and size them (the cells come after, at least lrad
+// wide). The skin: lists of the pairs within sigma (1 + skin), rebuilt after a path of
+// skin sigma / 2.
+void EventDriven::setup_lists(double sigma)
+{
+  double vol = 1.0;
+  long present = 0;
+  for (int d = 0; d < opt.dim; d++) vol *= L[d];
+  for (const Sched &s : S) present += !s.gone;
+  const bool want = opt.neighbours == EDOptions::LISTS ||
+      (opt.neighbours == EDOptions::AUTO && !has_gravity && vol > 0.0 &&
+       choose_lists(opt.dim, sigma, present / vol, present));
+  lists = want && H.size() < (1u << 26);
+  XN.clear();
+  NB.clear();
+  NN.clear();
+  if (!lists) return;
+  const double skin = opt.list_skin > 0.0 ? opt.list_skin : 0.4;    // (measured: 0.3 - 0.5 alike)
+  lskin = 0.5 * skin * sigma;
+  const double lrad = (sigma + 2.0 * lskin) * (1.0 + 1e-9);
+  lrad2 = lrad * lrad;
+  const size_t n = H.size();
+  XN.resize(n);
+  for (size_t i = 0; i < n; i++) XN[i] = H[i].x;    // (at time now: start() or lists_to_cells)
+  NB.assign(n * LCAP, 0);
+  NN.assign(n, 0);
+}
+
+// Remove i from the list of each of its neighbours (every entry, whatever its image) and empty
+// i's list.
+void EventDriven::list_drop(int i)
+{
+  const Entry *e = &NB[(size_t) i * LCAP];
+  for (int m = 0; m < NN[i]; m++) {
+    const int j = entry_j(e[m]);
+    Entry *f = &NB[(size_t) j * LCAP];
+    int n = NN[j];
+    for (int k = 0; k < n;)
+      if (entry_j(f[k]) == i)
+        f[k] = f[--n];
+      else
+        k++;
+    NN[j] = (uint8_t) n;
+  }
+  NN[i] = 0;
+}
+
+// Enter every particle whose list centre lies within lrad of i's into i's list and i into
+// theirs (higher_only: only particles of a higher index, for building all lists at once). i's
+// list must be empty and i in its cell. False if a list would exceed LCAP (nothing changed).
+bool EventDriven::list_build(int i, bool higher_only)
+{
+  const Vec3 c = XN[i];
+  const int *pk = img[i].k;
+  const int16_t *cc = S[i].c;
+  Entry found[LCAP];
+  int nf = 0;
+  const int zr = opt.dim == 3 ? 1 : 0;
+  for (int dz = -zr; dz <= zr; dz++)
+    for (int dy = -1; dy <= 1; dy++)
+      for (int dx = -1; dx <= 1; dx++) {
+        const int d[3] = {dx, dy, dz};
+        int u[3], k[3] = {0, 0, 0};
+        bool skip = false;
+        for (int m = 0; m < 3 && !skip; m++) {
+          u[m] = cc[m] + d[m];
+          if (u[m] >= 0 && u[m] < nc[m]) continue;
+          if (!opt.periodic[m]) skip = true;
+          k[m] = u[m] < 0 ? -1 : 1;
+          u[m] -= k[m] * nc[m];
+        }
+        if (skip) continue;
+        for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = img[j].next) {
+          if (j == i || (higher_only && j < i)) continue;
+          const int *qk = img[j].k;
+          Vec3 xj = XN[j];
+          const int o0 = pk[0] + k[0] - qk[0], o1 = pk[1] + k[1] - qk[1], o2 = pk[2] + k[2] - qk[2];
+          if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
+          if (norm2(c - xj) >= lrad2) continue;
+          if (nf == LCAP || NN[j] == LCAP) return false;
+          found[nf++] = make_entry(j, k[0], k[1], k[2]);
+        }
+      }
+  if (NN[i] + nf > LCAP) return false;
+  // (each j once per image: its own count is checked before it is entered)
+  for (int m = 0; m < nf; m++) {
+    const int j = entry_j(found[m]);
+    if (NN[j] == LCAP) {
+      for (int r = 0; r < m; r++) NN[entry_j(found[r])]--;    // undo: i leaves the lists it entered
+      return false;
+    }
+    NB[(size_t) j * LCAP + NN[j]++] = mirror(found[m], i);
+  }
+  std::copy(found, found + nf, &NB[(size_t) i * LCAP + NN[i]]);
+  NN[i] = (uint8_t) (NN[i] + nf);
+  return true;
+}
+
+bool EventDriven::build_all_lists()
+{
+  std::fill(NN.begin(), NN.end(), 0);
+  for (int i = 0; i < (int) H.size(); i++)
+    if (!S[i].gone && !list_build(i, true)) return false;
+  return true;
+}
+
+// The rebuild event of particle i (at now): a new list around its position now. Its own
+// trajectory is untouched (its stored state is not advanced), so rebuilds change no rounding.
+void EventDriven::list_rebuild(int i)
+{
+  list_drop(i);
+  cell_remove(i);
+  XN[i] = pos(i, now);
+  place(i);
+  cell_insert(i);
+  if (!list_build(i, false)) {
+    lists_to_cells();
+    return;
+  }
+  stats.crossings++;
+  crossings_since_reorder++;
+  predict(i);
+  reschedule(i);
+}
+
+// A list would overflow (a very dense spot): from now on this system finds its candidates in
+// cells, as start() would set them up at this moment (every particle brought to now).
+void EventDriven::lists_to_cells()
+{
+  const int n = (int) H.size();
+  for (int i = 0; i < n; i++) advance(i, now);
+  lists = false;
+  XN.clear();
+  NB.clear();
+  NN.clear();
+  setup_cells();
+  predict_all();
+  std::vector<double> times(n);
+  for (int i = 0; i < n; i++) times[i] = schedule(i);
+  queue.build(times);
+}
+
+// When i leaves the sphere of radius lskin around its list centre (moving now from xi at vi;
+// no gravity with lists)
+void EventDriven::predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  Sched &p = S[i];
+  const Vec3 d = xi - XN[i];
+  const double b = dot(d, vi), v2 = norm2(vi), c = norm2(d) - lskin * lskin;
+  if (!(v2 > 0.0)) {
+    p.xt = NEVER;
+    return;
+  }
+  // the positive root of v2 tau^2 + 2 b tau + c = 0 (c <= 0 up to rounding), in stable forms
+  const double s = std::sqrt(std::max(0.0, b * b - v2 * c));
+  const double tau = b > 0.0 ? -c / (b + s) : (s - b) / v2;
+  p.xt = now + std::max(0.0, tau);
+}
+
+// predict_all() with lists: rebuild times and walls per particle, each listed pair once
+void EventDriven::predict_all_lists()
+{
+  const int n = (int) H.size();
+  for (int i = 0; i < n; i++) {
+    if (S[i].gone) {
+      no_events(i);
+      continue;
+    }
+    predict(i, false);
+  }
+  for (int i = 0; i < n; i++) {
+    const Entry *e = &NB[(size_t) i * LCAP];
+    const int *pk = img[i].k;
+    for (int m = 0; m < NN[i]; m++) {
+      const int j = entry_j(e[m]), c = (int) (e[m] & 31);
+      const int *qk = img[j].k;
+      if (j > i)
+        offer_both(i, j, pk[0] + c % 3 - 1 - qk[0], pk[1] + c / 3 % 3 - 1 - qk[1], pk[2] + c / 9 - 1 - qk[2]);
+    }
+  }
+}
+
+}    // namespace granfric
