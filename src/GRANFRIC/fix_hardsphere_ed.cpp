@@ -602,14 +602,16 @@ void FixHardsphereED::window_gather(double t0, double dt)
   prev_dt = dt;
 }
 
-// the window's statistics (identical on every rank) into the running totals
+// the window's statistics (identical on every rank) into the running totals; the collision
+// counts include wall collisions, as the core's sliding, TC-elastic and energy-creating counts do
 void FixHardsphereED::finish_window(double dt)
 {
   totals[COMM] += totals[STEP_COMM];
   cum.add(last);
   cum_time += dt;
-  totals[STEP_COLLISIONS] = (double) last.collisions;
-  totals[COLLISIONS] += (double) last.collisions;
+  const double all = (double) last.collisions + (double) last.wall_collisions;
+  totals[STEP_COLLISIONS] = all;
+  totals[COLLISIONS] += all;
   totals[DISSIPATED] -= last.dE * force->mvv2e;
   totals[SLIDING] += (double) last.sliding;
   totals[MAX_ONE_PARTICLE] = (double) last.max_collisions_one_particle;

@@ -27,7 +27,8 @@ namespace LAMMPS_NS {
 
 class FixHardsphereED : public Fix {
  public:
-  // output vector entries
+  // output vector entries (every collision count includes wall collisions; WALL_COLLISIONS is
+  // their part)
   // QUEUE_REBUILDS: the fix's own neighbour structure (cell grid and every prediction) rebuilt
   // from scratch, because something outside the fix changed the atoms or a new run began
   enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, QUEUE_REBUILDS,
