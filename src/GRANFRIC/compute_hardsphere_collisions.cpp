@@ -82,10 +82,11 @@ void ComputeHardsphereCollisions::update_window()
   const double natoms = (double) atom->natoms;
   vector[0] = (dt > 0.0 && natoms > 0) ? 2.0 * ncoll / (natoms * dt) : 0.0;
   vector[1] = ncoll > 0 ? (now.dE - seen.dE) * force->mvv2e / ncoll : 0.0;
-  vector[2] = ncoll > 0 ? double(now.sliding - seen.sliding) / ncoll : 0.0;
+  const long nwall = now.wall_collisions - seen.wall_collisions;
+  // (the core counts sliding pair and wall collisions together)
+  vector[2] = ncoll + nwall > 0 ? double(now.sliding - seen.sliding) / (ncoll + nwall) : 0.0;
   vector[3] = (double) ncoll;
   vector[4] = dt;
-  const long nwall = now.wall_collisions - seen.wall_collisions;
   vector[5] = nwall > 0 ? (now.dE_wall - seen.dE_wall) * force->mvv2e / nwall : 0.0;
   vector[6] = (double) nwall;
   const double width = 0.5 * M_PI / nbins;

@@ -58,13 +58,7 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
       iarg += 2;
     } else if (strcmp(arg[iarg], "parallel") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed parallel", error);
-      if (strcmp(arg[iarg + 1], "domain") == 0)
-        parallel = DOMAIN;
-      else if (strcmp(arg[iarg + 1], "gather") == 0)
-        parallel = GATHER;
-      else
-        error->all(FLERR, "Fix hardsphere/ed parallel {} is not available (allowed: domain, "
-                   "gather)", arg[iarg + 1]);
+      parallel = choice("parallel", arg[iarg + 1], {"domain", "gather"}) == 0 ? DOMAIN : GATHER;
       iarg += 2;
     } else if (strcmp(arg[iarg], "reach") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed reach", error);
@@ -73,9 +67,13 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "Fix hardsphere/ed reach = {} must be >= 1 (the ghost shell is "
                    "reach * v_max * dt wide, plus the contact distance)", reach);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "overlap") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed overlap", error);
+      allow_overlap = choice("overlap", arg[iarg + 1], {"error", "allow"}) == 1;
+      iarg += 2;
     } else {
       error->all(FLERR, "Unknown fix hardsphere/ed keyword: {} (allowed: gravity, tc, maxevents, "
-                 "parallel, reach)", arg[iarg]);
+                 "parallel, reach, overlap)", arg[iarg]);
     }
   }
   if (domain->dimension == 2 && gravity[2] != 0.0)
@@ -96,6 +94,17 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     atom->add_callback(Atom::GROW);
     atom->add_callback(Atom::RESTART);
   }
+}
+
+// the place of value among the allowed values of keyword, or an error that lists them
+int FixHardsphereED::choice(const char *keyword, const std::string &value,
+                            const std::vector<std::string> &allowed) const
+{
+  for (size_t k = 0; k < allowed.size(); k++)
+    if (allowed[k] == value) return (int) k;
+  error->all(FLERR, "Fix hardsphere/ed {} {} is not available (allowed: {})", keyword, value,
+             utils::join_words(allowed, ", "));
+  return -1;
 }
 
 FixHardsphereED::~FixHardsphereED()
@@ -140,6 +149,10 @@ void FixHardsphereED::init()
   if (igroup != 0)
     error->all(FLERR, "Fix hardsphere/ed must be applied to group all (it moves every atom)");
   if (domain->triclinic) error->all(FLERR, "Fix hardsphere/ed does not support triclinic boxes");
+  // (a window of length dt <= 0 would move the atoms backward or not at all)
+  if (!(update->dt > 0.0))
+    error->all(FLERR, "Fix hardsphere/ed requires a positive timestep (timestep = {}): the step "
+               "is the window in which the atoms move forward", update->dt);
   // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), but
   // no fix may change the box (deform, barostats)
   for (const auto &f : modify->get_fix_list())
@@ -176,6 +189,7 @@ void FixHardsphereED::init()
       error->all(FLERR, "Fix hardsphere/ed: the non-periodic dimension {} needs a fix "
                  "hardsphere/wall (at least on one side)", "xyz"[d]);
   }
+  check_walls_cross();
   if (comm->nprocs > 1 && parallel == GATHER && comm->me == 0)
     error->warning(FLERR,
                    "Fix hardsphere/ed parallel gather on {} MPI ranks: every rank processes the "
@@ -185,12 +199,12 @@ void FixHardsphereED::init()
 void FixHardsphereED::setup(int)
 {
   const double *radius = atom->radius;
-  int bad = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (!(radius[i] > 0.0)) bad = 1;
-  int any;
-  MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any) error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0");
+  const tagint point = first_atom([&](int i) { return !(radius[i] > 0.0); });
+  if (point != NOATOM)
+    error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0 (atom {} has "
+               "diameter {})", point, 2.0 * atom_value(point, [&](int i) { return radius[i]; }));
+  check_box_fits_atoms();
+  check_atoms_between_walls();
   // A new run may bring new coefficients, a new box, new walls or new atoms. The event queue of
   // the last run is kept only if the core's configuration is the same in every respect; the
   // atoms themselves are compared at the first window (as between steps). Vibrating walls
@@ -211,8 +225,84 @@ void FixHardsphereED::setup(int)
   check_overlaps = true;    // (a kept queue continues an exact trajectory: nothing to check)
 }
 
-// once per run, after the first window's start: warn about overlapping atoms (usually a
-// mistake in the initial configuration); partial windows sum over the ranks
+// the lowest ID of the atoms (over all ranks) for which bad(local index) holds, or NOATOM
+tagint FixHardsphereED::first_atom(const std::function<bool(int)> &bad) const
+{
+  tagint who = NOATOM;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (bad(i)) who = std::min(who, atom->tag[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &who, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  return who;
+}
+
+// value(local index) of atom who, from the rank that owns it (collective)
+double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> &value) const
+{
+  double v = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->tag[i] == who) v = value(i);
+  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, world);
+  return v;
+}
+
+// a lower wall at or above an upper wall of the same dimension leaves no room between them
+void FixHardsphereED::check_walls_cross() const
+{
+  for (auto *lo : walls)
+    for (auto *hi : walls) {
+      const granfric::EDWall a = lo->geometry(), b = hi->geometry();
+      if (a.dim != b.dim || a.side > 0 || b.side < 0 || a.pos + a.A < b.pos) continue;
+      error->all(FLERR, "Fix hardsphere/wall {} ({} at {}{}) is not below fix hardsphere/wall {} "
+                 "({} at {}): the lower wall must lie below the upper one", lo->id, lo->face(),
+                 a.pos, a.A > 0.0 ? fmt::format(" + amplitude {}", a.A) : "", hi->id, hi->face(),
+                 b.pos);
+    }
+}
+
+// every box length at least the largest diameter (the cells of the core are that wide); the
+// error names an atom of that diameter
+void FixHardsphereED::check_box_fits_atoms() const
+{
+  double amax = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) amax = std::max(amax, atom->radius[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &amax, 1, MPI_DOUBLE, MPI_MAX, world);
+  for (int d = 0; d < domain->dimension; d++) {
+    if (domain->prd[d] >= 2.0 * amax * (1.0 + 1e-10)) continue;
+    const tagint who = first_atom([&](int i) { return atom->radius[i] == amax; });
+    error->all(FLERR, "Fix hardsphere/ed: atom {} has diameter {}, longer than the box in {} ({} "
+               "from {} to {}): every box length must be at least the largest diameter", who,
+               2.0 * amax, "xyz"[d], domain->prd[d], domain->boxlo[d], domain->boxhi[d]);
+  }
+}
+
+// no atom reaches behind a wall at the start of the run (its center at least its radius from
+// the plane, on the inner side, up to rounding); the error names the atom with the lowest ID
+void FixHardsphereED::check_atoms_between_walls() const
+{
+  const double t = window_start_time() + update->dt;    // (the time the next window starts)
+  for (auto *w : walls) {
+    const granfric::EDWall g = w->geometry();
+    double p, vw, aw;
+    g.motion(t, p, vw, aw);
+    // (a margin for rounding: 1e-9 of the diameter, 1e-12 of the wall's coordinate)
+    const tagint who = first_atom([&](int i) {
+      const double a = atom->radius[i], gap = g.side * (p - atom->x[i][g.dim]);
+      return gap < a - 2e-9 * a - 1e-12 * std::fabs(p);
+    });
+    if (who == NOATOM) continue;
+    double at[4];    // (position and radius of atom who)
+    for (int d = 0; d < 4; d++)
+      at[d] = atom_value(who, [&](int i) { return d < 3 ? atom->x[i][d] : atom->radius[i]; });
+    error->all(FLERR, "Fix hardsphere/ed: atom {} at ({}, {}, {}) with radius {} reaches behind "
+               "fix hardsphere/wall {} ({} at {}): every atom must start between the walls, "
+               "at least its radius away from each", who, at[0], at[1], at[2], at[3], w->id,
+               w->face(), p);
+  }
+}
+
+// once per run, after the first window's start: overlapping atoms (usually a mistake in the
+// initial configuration) are an error, or a warning with overlap allow; partial windows sum
+// over the ranks
 void FixHardsphereED::report_overlaps(bool partial)
 {
   if (!check_overlaps) return;
@@ -236,12 +326,20 @@ void FixHardsphereED::report_overlaps(bool partial)
     ki = (long) otags[ki];
     kj = (long) otags[kj];
   }
-  if (n > 0 && comm->me == 0)
+  if (n == 0) return;
+  if (!allow_overlap) {
+    queue_valid = dom_valid = false;
+    error->all(FLERR,
+               "Fix hardsphere/ed: atoms {} and {} overlap by {:.6g} at the start of the run ({} "
+               "overlapping pairs in all). Remove them with delete_atoms overlap, create atoms with "
+               "create_atoms ... overlap, or let overlapping pairs separate with keyword overlap "
+               "allow", ki, kj, out.depth, (long) n);
+  }
+  if (comm->me == 0)
     error->warning(FLERR,
                    "Fix hardsphere/ed: {} pairs of atoms overlap at the start of the run (deepest: "
                    "atoms {} and {} by {:.6g}); approaching overlapping pairs collide at once, "
-                   "receding ones separate. Check the initial configuration (lattice spacing, "
-                   "diameters)",
+                   "receding ones separate (overlap allow)",
                    (long) n, ki, kj, out.depth);
 }
 
@@ -280,9 +378,29 @@ std::vector<granfric::LawParams> FixHardsphereED::law_table() const
   return laws;
 }
 
-void FixHardsphereED::configure_core(const granfric::EDOptions &o)
+void FixHardsphereED::configure_core(const granfric::EDOptions &o, bool collective)
 {
-  ed.configure(o, atom->ntypes, law_table());
+  try {
+    ed.configure(o, atom->ntypes, law_table());
+  } catch (std::exception &e) {
+    core_failed(e, collective);
+  }
+}
+
+void FixHardsphereED::start_core(bool collective)
+{
+  try {
+    ed.start();
+  } catch (std::exception &e) {
+    core_failed(e, collective);
+  }
+}
+
+void FixHardsphereED::core_failed(const std::exception &e, bool collective)
+{
+  queue_valid = dom_valid = false;
+  if (collective) error->all(FLERR, "Fix hardsphere/ed: {}", e.what());
+  error->one(FLERR, "Fix hardsphere/ed: {}", e.what());
 }
 
 // every rank's send buffer, concatenated in rank order into recv (counts and displs say where
@@ -524,7 +642,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     }
     same_atoms = true;
     ed.set_clock(t0);
-    ed.start();
+    start_core(true);
     report_overlaps(false);
     noff = domain->dimension;
     offset.assign((size_t) ntotal * noff, 0);
@@ -552,8 +670,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
                (tagint) otags[e.i], e.n, update->ntimestep, maxevents,
                (tagint) otags[e.j], t0 + e.t);
   } catch (std::exception &e) {
-    queue_valid = false;
-    error->all(FLERR, "Fix hardsphere/ed: {}", e.what());
+    core_failed(e, true);
   }
 
   // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the
@@ -602,14 +719,16 @@ void FixHardsphereED::window_gather(double t0, double dt)
   prev_dt = dt;
 }
 
-// the window's statistics (identical on every rank) into the running totals
+// the window's statistics (identical on every rank) into the running totals; the collision
+// counts include wall collisions, as the core's sliding, TC-elastic and energy-creating counts do
 void FixHardsphereED::finish_window(double dt)
 {
   totals[COMM] += totals[STEP_COMM];
   cum.add(last);
   cum_time += dt;
-  totals[STEP_COLLISIONS] = (double) last.collisions;
-  totals[COLLISIONS] += (double) last.collisions;
+  const double all = (double) last.collisions + (double) last.wall_collisions;
+  totals[STEP_COLLISIONS] = all;
+  totals[COLLISIONS] += all;
   totals[DISSIPATED] -= last.dE * force->mvv2e;
   totals[SLIDING] += (double) last.sliding;
   totals[MAX_ONE_PARTICLE] = (double) last.max_collisions_one_particle;

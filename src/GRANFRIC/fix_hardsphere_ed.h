@@ -1,7 +1,8 @@
 /* -*- c++ -*- ----------------------------------------------------------
    GRANFRIC: fix hardsphere/ed, the exact event-driven integrator for hard spheres and discs.
 
-   fix ID group hardsphere/ed [gravity gx gy gz] [tc t_c] [maxevents N]
+   fix ID group hardsphere/ed [gravity gx gy gz] [tc t_c] [maxevents N] [parallel domain|gather]
+                              [reach f] [overlap error|allow]
 
    Each time step is a window in which every collision is processed in exact time order with the
    collision law of the hardsphere pair style (core/event_driven.h); positions, velocities and
@@ -21,13 +22,16 @@ FixStyle(hardsphere/ed,FixHardsphereED);
 
 #include "core/event_driven.h"
 
+#include <functional>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
 
 class FixHardsphereED : public Fix {
  public:
-  // output vector entries
+  // output vector entries (every collision count includes wall collisions; WALL_COLLISIONS is
+  // their part)
   // QUEUE_REBUILDS: the fix's own neighbour structure (cell grid and every prediction) rebuilt
   // from scratch, because something outside the fix changed the atoms or a new run began
   enum { STEP_COLLISIONS, COLLISIONS, DISSIPATED, SLIDING, MAX_ONE_PARTICLE, QUEUE_REBUILDS,
@@ -122,9 +126,11 @@ class FixHardsphereED : public Fix {
   double reach;                          // ghost shell safety factor on v_max dt
   double widen;                          // adaptive factor on top of reach (>= 1)
 
+  int choice(const char *keyword, const std::string &value,
+             const std::vector<std::string> &allowed) const;
   granfric::EDOptions core_options() const;
   std::vector<granfric::LawParams> law_table() const;
-  void configure_core(const granfric::EDOptions &o);
+  void configure_core(const granfric::EDOptions &o, bool collective = true);
   double window_start_time() const;
   // image flags of an atom that was wrapped by dimg periods (most are not: inline test)
   static void shift_image(imageint &image, const int *dimg)
@@ -139,7 +145,20 @@ class FixHardsphereED : public Fix {
   void pack_atom(int i, double t0, double *b) const;
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
   bool check_overlaps = false;
+  bool allow_overlap = false;            // keyword overlap allow: overlapping pairs separate
   void report_overlaps(bool partial);
+  // errors in the setup of a run: walls that cross, a diameter longer than the box, atoms
+  // behind a wall
+  void check_walls_cross() const;
+  void check_box_fits_atoms() const;
+  void check_atoms_between_walls() const;
+  static constexpr tagint NOATOM = MAXTAGINT;
+  tagint first_atom(const std::function<bool(int)> &bad) const;
+  double atom_value(tagint who, const std::function<double(int)> &value) const;
+  // the core's start from the particles set; its exceptions (and configure_core's) become
+  // LAMMPS errors, of all ranks when collective (every rank runs the same core), else of one
+  void start_core(bool collective);
+  void core_failed(const std::exception &e, bool collective);
   void schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
                       const std::vector<int> &masks, bool shifts);
 

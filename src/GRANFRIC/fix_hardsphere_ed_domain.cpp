@@ -435,7 +435,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       o.periodic[d] = false;
       o.open[d] = true;
     }
-    configure_core(o);
+    configure_core(o, false);
     const int n = nlocal + nghost, ns = n + n / 16 + 64;
     ed.resize(ns);
     gtag.assign(ns, -1);
@@ -468,7 +468,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       dom_slot[gtag[e]] = e;
     }
     ed.set_clock(t0);
-    ed.start();
+    start_core(false);
     repredicted = n;
     totals[QUEUE_REBUILDS] += 1.0;
   }

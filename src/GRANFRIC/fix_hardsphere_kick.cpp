@@ -29,6 +29,9 @@ FixHardsphereKick::FixHardsphereKick(LAMMPS *lmp, int narg, char **arg) :
   seed = utils::bnumeric(FLERR, arg[5], false, lmp);
   if (!(fdr > 0.0)) error->all(FLERR, "Fix hardsphere/kick f_dr = {} must be > 0", fdr);
   if (!(vdr >= 0.0)) error->all(FLERR, "Fix hardsphere/kick v_dr = {} must be >= 0", vdr);
+  if (vdr > MAX_VDR)
+    error->all(FLERR, "Fix hardsphere/kick v_dr = {} is out of range (at most {:g}: the energy a "
+               "kick adds, m v_dr^2, must stay finite)", vdr, MAX_VDR);
   if (seed <= 0) error->all(FLERR, "Fix hardsphere/kick seed = {} must be > 0", seed);
   int iarg = 6;
   while (iarg < narg) {
@@ -62,12 +65,35 @@ int FixHardsphereKick::setmask()
 void FixHardsphereKick::init()
 {
   FixHardsphereED::require(lmp, style, id, "applies the kicks at their times inside each step");
+  check_kicks_per_step();
   // the first kick of a new run is the first kick time at or after the current time
   if (!started) {
     const double now = update->atime + (update->ntimestep - update->atimestep) * update->dt;
     next_kick = std::max(next_kick, (long) std::ceil(now * fdr - 1e-9));
     started = true;
   }
+}
+
+// Every kick of a step is processed inside it, each over all atoms (brought to the kick time
+// and predicted afresh): a bound on both keeps a step finite. The kick indices of the run stay
+// exact in a double.
+void FixHardsphereKick::check_kicks_per_step() const
+{
+  const double per_step = fdr * update->dt, natoms = (double) atom->natoms;
+  if (per_step > MAX_KICKS_PER_STEP)
+    error->all(FLERR, "Fix hardsphere/kick {}: f_dr = {:g} gives {:.6g} kicks per step of {} (at most "
+               "{:g} are allowed): lower f_dr or the timestep", id, fdr, per_step, update->dt,
+               MAX_KICKS_PER_STEP);
+  if (per_step * natoms > MAX_ATOM_KICKS_PER_STEP)
+    error->all(FLERR, "Fix hardsphere/kick {}: {:.6g} kicks per step (f_dr = {:g}, timestep {}) on "
+               "{:.0f} atoms are {:.6g} atom kicks per step (at most {:g} are allowed): lower f_dr "
+               "or the timestep", id, per_step, fdr, update->dt, natoms, per_step * natoms,
+               MAX_ATOM_KICKS_PER_STEP);
+  const double t_end = update->atime + (update->laststep - update->atimestep) * update->dt;
+  if (fdr * std::fabs(t_end) > MAX_KICK_INDEX)
+    error->all(FLERR, "Fix hardsphere/kick {}: f_dr = {:g} reaches kick index {:.6g} by the end of "
+               "the run at time {:.6g} (at most {:g}: kick times k/f_dr must stay exact)", id, fdr,
+               fdr * std::fabs(t_end), t_end, MAX_KICK_INDEX);
 }
 
 double FixHardsphereKick::compute_scalar()

@@ -41,6 +41,10 @@ class FixHardsphereKick : public Fix {
   granfric::Vec3 momentum_shift(long k, int dim) const;
   // the Gaussian number n (0..5) of an atom at kick k: a pure function of (seed, tag, k, n)
   static double gaussian(long seed, long tag, long k, int n);
+  // bounds (doc/fix_hardsphere_kick.rst): kicks per step, kicks per step times atoms, the kick
+  // index of a run, v_dr
+  static constexpr double MAX_KICKS_PER_STEP = 1e6, MAX_ATOM_KICKS_PER_STEP = 1e9;
+  static constexpr double MAX_KICK_INDEX = 1e15, MAX_VDR = 1e150;
 
  private:
   double fdr, vdr, spin;
@@ -48,6 +52,7 @@ class FixHardsphereKick : public Fix {
   int momentum;
   long next_kick;      // index of the next kick (restart)
   bool started;
+  void check_kicks_per_step() const;
 };
 
 }    // namespace LAMMPS_NS

@@ -31,6 +31,7 @@ class FixHardsphereWall : public Fix {
   // the wall for the core, at the current box (after init(), which validates the coefficients)
   granfric::EDWall wall() const;
   int dimension() const { return dim; }
+  std::string face() const { return std::string(1, "xyz"[dim]) + (side < 0 ? "lo" : "hi"); }
   granfric::EDWall geometry() const;    // position and motion only
   double compute_vector(int) override;
 

@@ -13,10 +13,11 @@ bool verbose()
   return v && *v && std::string(v) != "0";
 }
 
-std::unique_ptr<LAMMPS_NS::LAMMPS> make_lammps()
+namespace {
+std::unique_ptr<LAMMPS_NS::LAMMPS> new_lammps(bool screen)
 {
   std::vector<std::string> words = {"granfric_test", "-log", "none", "-nocite"};
-  if (!verbose()) {
+  if (!screen) {
     words.push_back("-screen");
     words.push_back("none");
   }
@@ -25,6 +26,12 @@ std::unique_ptr<LAMMPS_NS::LAMMPS> make_lammps()
   auto lmp = std::make_unique<LAMMPS_NS::LAMMPS>((int) argv.size(), argv.data(), MPI_COMM_WORLD);
   lmp->input->one(std::string("plugin load ") + GRANFRIC_PLUGIN);
   return lmp;
+}
+}    // namespace
+
+std::unique_ptr<LAMMPS_NS::LAMMPS> make_lammps()
+{
+  return new_lammps(verbose());
 }
 
 void run(LAMMPS_NS::LAMMPS *lmp, const std::string &commands)
@@ -44,6 +51,16 @@ std::string error_of(LAMMPS_NS::LAMMPS *lmp, const std::string &commands)
     return msg.substr(0, msg.find('\n'));
   }
   return "";
+}
+
+std::string screen_of(const std::string &commands)
+{
+  ::testing::internal::CaptureStdout();
+  {
+    auto lmp = new_lammps(true);
+    error_of(lmp.get(), commands);
+  }
+  return ::testing::internal::GetCapturedStdout();
 }
 
 }    // namespace granfric_test

@@ -34,6 +34,10 @@ void run(LAMMPS_NS::LAMMPS *lmp, const std::string &commands);
 // the LAMMPS error message (first line) thrown by the commands, or "" when none is thrown
 std::string error_of(LAMMPS_NS::LAMMPS *lmp, const std::string &commands);
 
+// what a fresh LAMMPS instance with the plugin loaded prints to the screen (warnings included)
+// while it runs the commands; no other instance may be alive meanwhile
+std::string screen_of(const std::string &commands);
+
 }    // namespace granfric_test
 
 // expect that the commands fail with an error message that matches regex RE
