@@ -379,6 +379,30 @@ TEST(EventDriven, EmptySlotsFilledAndEmptiedEqualFreshStart)
   }
 }
 
+// two particles overlapping across a periodic boundary are found in boxes of any number of
+// cells (with fewer than 3 cells a dimension's neighbour cells repeat at other image shifts)
+TEST(EventDriven, OverlapsAcrossPeriodicBoundaries)
+{
+  for (int dim = 2; dim <= 3; dim++)
+    for (double side : {3.0, 4.0, 10.0}) {
+      EventDriven ed;
+      EDOptions o;
+      o.dim = dim;
+      for (int d = 0; d < 3; d++) o.hi[d] = d < dim ? side : 1.0;
+      ed.configure(o, 1, std::vector<LawParams>(4, LawParams::rough(1.0, -1.0)));
+      ed.resize(2);
+      auto a = ed.particle(0), b = ed.particle(1);
+      a.x = Vec3(0.3, 0.5 * side, dim == 3 ? 0.5 * side : 0.5);
+      b.x = Vec3(side - 0.3, 0.5 * side, dim == 3 ? 0.5 * side : 0.5);    // 0.6 apart across x = 0
+      a.a = b.a = 0.5;
+      ed.start();
+      long ki, kj;
+      double depth;
+      EXPECT_EQ(ed.overlaps(1e-9, ki, kj, depth), 1) << dim << "D, box " << side;
+      EXPECT_NEAR(depth, 0.4, 1e-12);
+    }
+}
+
 TEST(EventDriven, GlobalKicksEqualReference)
 {
   for (int dim = 2; dim <= 3; dim++) {

@@ -583,7 +583,9 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
             u[m] = S[i].c[m] + d[m];
             k[m] = 0;
             if (u[m] < 0 || u[m] >= nc[m]) {
-              if (!opt.periodic[m] || nc[m] < 3) skip = true;    // (under 3 cells: not searched)
+              // (with fewer than 3 cells a cell is reached at two or three image shifts: each
+              // is another image of its particles)
+              if (!opt.periodic[m]) skip = true;
               k[m] = u[m] < 0 ? -1 : 1;
               u[m] -= k[m] * nc[m];
             }
