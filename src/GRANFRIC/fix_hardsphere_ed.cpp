@@ -80,6 +80,9 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "Fix hardsphere/ed gravity must have gz = 0 in a 2d simulation");
 
   time_integrate = 1;
+  // the collision virial of each step goes into LAMMPS's pressure (fix_modify virial no: not)
+  virial_global_flag = 1;
+  thermo_virial = 1;
   vector_flag = 1;
   size_vector = NVECTOR;
   global_freq = 1;
@@ -738,6 +741,10 @@ void FixHardsphereED::finish_window(double dt)
   totals[WALL_COLLISIONS] += (double) last.wall_collisions;
   totals[DISSIPATED] -= last.dE_wall * force->mvv2e;
   totals[WALL_ENERGY] += last.dE_wall * force->mvv2e;
+  // the step's collision virial, sum of r (x) dP over its collisions divided by its length: the
+  // time average of the impulsive forces' virial over the window (last holds the whole system's
+  // on every rank; compute pressure sums the ranks' shares, so rank 0 gives it all)
+  for (int k = 0; k < 6; k++) virial[k] = comm->me == 0 ? last.virial[k] * force->mvv2e / dt : 0.0;
 }
 
 double FixHardsphereED::compute_vector(int n)

@@ -740,8 +740,9 @@ bool FixHardsphereED::window_domain(double t0, double dt)
                   last.crossings, last.wall_collisions, last.global_events, repredicted};
   long gsum[8];
   MPI_Allreduce(lsum, gsum, 8, MPI_LONG, MPI_SUM, world);
-  double esum[3] = {last.dE, last.dE_wall, last.injected}, gesum[3];
-  MPI_Allreduce(esum, gesum, 3, MPI_DOUBLE, MPI_SUM, world);
+  double esum[9] = {last.dE, last.dE_wall, last.injected}, gesum[9];
+  std::copy(last.virial, last.virial + 6, esum + 3);
+  MPI_Allreduce(esum, gesum, 9, MPI_DOUBLE, MPI_SUM, world);
   long lmax = last.max_collisions_one_particle, gmax;
   MPI_Allreduce(&lmax, &gmax, 1, MPI_LONG, MPI_MAX, world);
   if (!last.gamma_hist.empty()) {
@@ -759,6 +760,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   last.dE = gesum[0];
   last.dE_wall = gesum[1];
   last.injected = gesum[2];
+  std::copy(gesum + 3, gesum + 9, last.virial);
   last.max_collisions_one_particle = gmax;
   totals[STEP_PREDICTED] = (double) gsum[7];
   queue_valid = false;

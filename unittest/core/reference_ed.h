@@ -72,6 +72,14 @@ struct Reference {
   double time = 0.0;
   long collisions = 0;
   double dE = 0.0;
+  // collision virial: sum of r_a dP_b (xx, yy, zz, xy, xz, yz), dP = m (v' - v) on the particle
+  // whose centre r points to (from its partner's centre, or from the wall's contact point)
+  double virial[6] = {0, 0, 0, 0, 0, 0};
+  void tally_virial(const Vec3 &r, const Vec3 &dP)
+  {
+    const double w[6] = {r.x * dP.x, r.y * dP.y, r.z * dP.z, r.x * dP.y, r.x * dP.z, r.y * dP.z};
+    for (int k = 0; k < 6; k++) virial[k] += w[k];
+  }
   // instant global events (kicks) at absolute times, applied to all particles at once
   std::vector<double> kick_times;
   std::function<void(std::vector<RefParticle> &, int)> kick;
@@ -207,6 +215,7 @@ struct Reference {
         Vec3 vwall;
         vwall[w.dim] = w.speed(time);
         const Collision c = collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body::wall(vwall), nn);
+        tally_virial(a.a * nn, a.m * (c.v1 - a.v));
         a.v = c.v1;
         a.w = c.w1;
         a.t_last = time;
@@ -225,6 +234,7 @@ struct Reference {
       if (tc > 0 && ((sa >= 0 && sa < tc) || (sb >= 0 && sb < tc))) law = law.elastic();
       const Collision c =
           collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body{b.v, b.w, b.m, b.a, b.q}, nn);
+      tally_virial(r, a.m * (c.v1 - a.v));
       a.v = c.v1;
       a.w = c.w1;
       b.v = c.v2;

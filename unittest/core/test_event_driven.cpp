@@ -39,6 +39,15 @@ void expect_same_state(const Reference &ref, const CoreRun &run, double tol)
   EXPECT_LT(dw, tol) << "spins deviate from the brute-force reference";
 }
 
+// the collision virial equals the reference's sum over its collisions (pairs and walls), to
+// rounding against the size of its diagonal, and the diagonal is positive (collisions repel)
+void expect_same_virial(const Reference &ref, const EDStats &st)
+{
+  const double scale = std::fabs(ref.virial[0]) + std::fabs(ref.virial[1]) + std::fabs(ref.virial[2]);
+  EXPECT_GT(ref.virial[0] + ref.virial[1] + ref.virial[2], 0.0);
+  for (int k = 0; k < 6; k++) EXPECT_NEAR(st.virial[k], ref.virial[k], 1e-9 * scale) << "component " << k;
+}
+
 struct Case {
   int law, dim, n;
   double phi, dt_mft, T_mft;
@@ -80,6 +89,7 @@ TEST_P(Trajectory, EqualsBruteForceReference)
   ASSERT_GE(ref.collisions, std::max(4, c.n));    // several collisions per particle happened
   EXPECT_EQ(run.total.collisions, ref.collisions);
   EXPECT_NEAR(run.total.dE, ref.dE, 1e-9 * std::fabs(ref.dE));
+  expect_same_virial(ref, run.total);
   expect_same_state(ref, run, 1e-9);
 }
 
@@ -490,6 +500,7 @@ TEST(EventDriven, WallsEqualReferenceAndHold)
       EXPECT_LT(run.total.collisions, 8 * s.n);
       EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
       EXPECT_EQ(run.total.collisions, ref.collisions);
+      expect_same_virial(ref, run.total);
       for (size_t i = 0; i < ref.p.size(); i++) {
         EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
         EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);

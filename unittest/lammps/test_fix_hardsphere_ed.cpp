@@ -156,6 +156,85 @@ INSTANTIATE_TEST_SUITE_P(
         TrajCase{3, "hardsphere/jz", "pair_coeff * * 0.1 0.2 0.5 0.4", 4.0, 1, ""}),
     traj_name);
 
+// The fix's virial, step by step (sum over the step's collisions of r (x) dP, divided by the
+// step), summed over the run equals the brute-force reference's sum over its collisions; LAMMPS's
+// compute pressure takes it (kinetic part plus virial trace / (d V)), and fix_modify virial no
+// leaves it out.
+TEST(FixHardsphereED, VirialIsTheCollisionsAndEntersThePressure)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    auto lmp = make_lammps();
+    run(lmp.get(), gas(dim, dim == 2 ? 150 : 120, dim == 2 ? 22.0 : 9.0, 4711));
+    run(lmp.get(), "pair_style hardsphere/walton\npair_coeff * * 0.9 0.3 0.4\n"
+                   "fix ed all hardsphere/ed\ntimestep 0.1\nthermo 0\nrun 0 post no");
+    Reference ref = reference_of(lmp.get());
+    auto *fix = lmp->modify->get_fix_by_id("ed");
+    auto *press = lmp->modify->get_compute_by_id("thermo_press");
+    auto *temp = lmp->modify->get_compute_by_id("thermo_temp");
+    double sum[6] = {0, 0, 0, 0, 0, 0};
+    const int steps = 30;
+    for (int s = 0; s < steps; s++) {
+      run(lmp.get(), "run 1 pre no post no");
+      for (int k = 0; k < 6; k++) sum[k] += fix->virial[k] * 0.1;
+      // LAMMPS's pressure: (dof T + virial trace) / (d V), with the fix's virial in it
+      const double vol = lmp->domain->xprd * lmp->domain->yprd * (dim == 3 ? lmp->domain->zprd : 1.0);
+      const double kin = temp->compute_scalar() * temp->dof;
+      const double tr = fix->virial[0] + fix->virial[1] + (dim == 3 ? fix->virial[2] : 0.0);
+      EXPECT_NEAR(press->compute_scalar(), (kin + tr) / (dim * vol), 1e-10 * (kin + std::fabs(tr)) / vol);
+    }
+    ref.run_until(0.1 * steps);
+    ASSERT_GT(ref.collisions, (long) ref.p.size());
+    const double scale = std::fabs(ref.virial[0]) + std::fabs(ref.virial[1]) + std::fabs(ref.virial[2]);
+    for (int k = 0; k < 6; k++) EXPECT_NEAR(sum[k], ref.virial[k], 1e-9 * scale) << dim << "D, component " << k;
+    EXPECT_GT(ref.virial[0] + ref.virial[1], 0.0);
+    run(lmp.get(), "fix_modify ed virial no\nrun 1 post no");    // (pre yes: compute pressure re-initialised)
+    const double vol = lmp->domain->xprd * lmp->domain->yprd * (dim == 3 ? lmp->domain->zprd : 1.0);
+    EXPECT_NEAR(press->compute_scalar(), temp->compute_scalar() * temp->dof / (dim * vol), 1e-12)
+        << "fix_modify virial no: the kinetic pressure only";
+  }
+}
+
+// The equation of state of elastic hard spheres and discs from LAMMPS's own pressure (kinetic
+// plus the fix's collision virial), averaged over 200 mean free times of N ~ 4000 after 20 of
+// equilibration, against Carnahan-Starling (3D: Z = (1 + p + p^2 - p^3) / (1 - p)^3) and
+// Henderson (2D: Z = (1 + p^2 / 8) / (1 - p)^2), both within 0.5 % of simulations at these
+// fractions; Z = P V / (N T) with T from the kinetic energy (conserved).
+TEST(FixHardsphereED, PressureFollowsTheEquationOfState)
+{
+  struct EOS {
+    int dim;
+    double phi;
+  };
+  for (const EOS c : {EOS{3, 0.25}, EOS{3, 0.40}, EOS{2, 0.30}}) {
+    const double p = c.phi;
+    const double z_eos = c.dim == 3 ? (1 + p + p * p - p * p * p) / std::pow(1 - p, 3)
+                                    : (1 + p * p / 8) / ((1 - p) * (1 - p));
+    const double rho = c.dim == 3 ? 6.0 * p / M_PI : 4.0 * p / M_PI;
+    const double g = c.dim == 3 ? (1 - p / 2) / std::pow(1 - p, 3) : (1 - 7 * p / 16) / ((1 - p) * (1 - p));
+    const double mft = 1.0 / ((c.dim == 3 ? 4.0 : 2.0) * rho * g * std::sqrt(M_PI));
+    auto lmp = make_lammps();
+    const std::string box = c.dim == 3 ? "lattice fcc " + std::to_string(rho) +
+            "\nregion box block 0 10 0 10 0 10\n"
+                                       : "lattice sq " + std::to_string(rho) +
+            "\nregion box block 0 64 0 64 -0.5 0.5\n";
+    run(lmp.get(), "units lj\ndimension " + std::to_string(c.dim) +
+                       "\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n" + box +
+                       "create_box 1 box\ncreate_atoms 1 box\nset type 1 diameter 1.0\n"
+                       "set type 1 mass 1.0\nvelocity all create 1.0 4321 loop geom mom yes dist gaussian\n"
+                       "pair_style hardsphere/rough" + std::string(c.dim == 2 ? " inertia disc" : "") +
+                       "\npair_coeff * * 1.0 -1.0\nfix ed all hardsphere/ed\ntimestep " +
+                       std::to_string(mft) + "\nthermo 0\nrun 20 post no\nreset_timestep 0\n"
+                       "compute ke all ke\nfix p all ave/time 1 200 200 c_thermo_press\nrun 200 post no");
+    const double P = lmp->modify->get_fix_by_id("p")->compute_scalar();
+    const double ke = lmp->modify->get_compute_by_id("ke")->compute_scalar();
+    const double n = (double) lmp->atom->natoms;
+    const double vol = lmp->domain->xprd * lmp->domain->yprd * (c.dim == 3 ? lmp->domain->zprd : 1.0);
+    const double z = P * vol / (2.0 * ke / c.dim);    // (N T = 2 KE / d)
+    EXPECT_NEAR(z / z_eos, 1.0, 0.01) << c.dim << "D, fraction " << p << ": Z = " << z
+                                      << ", equation of state " << z_eos << " (N = " << n << ")";
+  }
+}
+
 TEST(FixHardsphereED, RestartContinuesTheTrajectory)
 {
   const std::string setup = gas(2, 150, 22.0, 99) +

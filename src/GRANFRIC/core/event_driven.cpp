@@ -21,6 +21,7 @@ void EDStats::add(const EDStats &o)
   dE_wall += o.dE_wall;
   injected += o.injected;
   global_events += o.global_events;
+  for (int k = 0; k < 6; k++) virial[k] += o.virial[k];
   if (gamma_hist.size() < o.gamma_hist.size()) gamma_hist.resize(o.gamma_hist.size(), 0);
   for (size_t k = 0; k < o.gamma_hist.size(); k++) gamma_hist[k] += o.gamma_hist[k];
 }
@@ -884,6 +885,17 @@ void EventDriven::predict_walls(int i, const Vec3 &xi, const Vec3 &vi)
   }
 }
 
+// r_a dP_b into the virial sum (xx, yy, zz, xy, xz, yz)
+static void add_virial(double *w, const Vec3 &r, const Vec3 &dP)
+{
+  w[0] += r.x * dP.x;
+  w[1] += r.y * dP.y;
+  w[2] += r.z * dP.z;
+  w[3] += r.x * dP.y;
+  w[4] += r.x * dP.z;
+  w[5] += r.y * dP.z;
+}
+
 // counter-based uniform numbers in (0, 1) from a key
 static inline uint64_t mix64(uint64_t z)
 {
@@ -952,6 +964,7 @@ void EventDriven::collide_wall(int i)
   const double dE = 0.5 * p.m * (norm2(c.v1) - norm2(h.v)) +
       0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
   c.dE = w.vibrating() ? dE : c.dE;
+  const Vec3 dP = p.m * (c.v1 - h.v);    // (a thermal wall's too)
   h.v = c.v1;
   p.w = c.w1;
   if (!TL.empty()) TL[i] = t;
@@ -968,6 +981,7 @@ void EventDriven::collide_wall(int i)
     if (c.energy_created) stats.energy_created++;
     if (tc_elastic) stats.tc_elastic++;
     stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
+    add_virial(stats.virial, h.a * n, dP);
   }
   if (ni > opt.max_collisions) {
     std::ostringstream s;
@@ -1044,16 +1058,17 @@ void EventDriven::collide_pair(int i)
   if (counted(i)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
   if (counted(j)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, nj);
   if (book) {
-  stats.collisions++;
-  stats.dE += c.dE;
-  if (c.sliding) stats.sliding++;
-  if (c.energy_created) stats.energy_created++;
-  if (tc_elastic) stats.tc_elastic++;
-  if (opt.gamma_bins > 0) {
-    const int nb = opt.gamma_bins;
-    int k = (int) ((c.gamma() - 0.5 * M_PI) / (0.5 * M_PI) * nb);
-    stats.gamma_hist[std::min(nb - 1, std::max(0, k))]++;
-  }
+    stats.collisions++;
+    stats.dE += c.dE;
+    if (c.sliding) stats.sliding++;
+    if (c.energy_created) stats.energy_created++;
+    if (tc_elastic) stats.tc_elastic++;
+    add_virial(stats.virial, r, c.dP);
+    if (opt.gamma_bins > 0) {
+      const int nb = opt.gamma_bins;
+      int k = (int) ((c.gamma() - 0.5 * M_PI) / (0.5 * M_PI) * nb);
+      stats.gamma_hist[std::min(nb - 1, std::max(0, k))]++;
+    }
   }
   if (ni > opt.max_collisions || nj > opt.max_collisions) {
     std::ostringstream s;

@@ -119,6 +119,10 @@ struct EDStats {
   long wall_collisions = 0;
   double dE_wall = 0.0;                 // sum of wall collision energy changes
   double injected = 0.0;                // kinetic energy added by instant global events (kicks)
+  // collision virial: the sum over the booked collisions (pairs and walls) of r_a dP_b, with r
+  // the contact vector (from partner j's centre to i's, or from the wall's contact point to the
+  // particle's centre) and dP the impulse on i; components xx, yy, zz, xy, xz, yz (r_x dP_y ...)
+  double virial[6] = {0, 0, 0, 0, 0, 0};
   long global_events = 0;
   std::vector<long> gamma_hist;         // impact angles, EDOptions::gamma_bins bins
   void add(const EDStats &o);
