@@ -14,8 +14,8 @@ with r = 1 and beta = -1, i.e. elastic and smooth).
 Both are measured as whole processes: CPU time (user + sys, start-up and output included for
 both) and peak resident memory from the rusage of the child process. Rounds are interleaved
 (every point of both codes once per round, the order alternating), and the fastest of the rounds
-is kept. The collision counts of both are printed as a guard that both simulated the same physics
-(collision rates within 2 %).
+is kept. The collision counts and the pressures (averaged over the run, from the collision
+virial) of both are printed as a guard that both simulated the same physics (each within 2 %).
 
     bench/peers [--peer DIR] [--rounds R] [--quick] [--points ...] [--out DIR]
 
@@ -124,11 +124,12 @@ def parse_peer(text):
 
 
 def parse_granfric(text):
-    """collisions from bench/in.peers' PEERS line"""
-    m = re.search(r"^PEERS N (\d+) phi \S+ time \S+ steps (\d+) collisions (\d+)", text, re.M)
+    """(collisions, pressure) from bench/in.peers' PEERS line"""
+    m = re.search(r"^PEERS N (\d+) phi \S+ time \S+ steps (\d+) collisions (\d+) pressure (\S+)",
+                  text, re.M)
     if not m:
         raise ValueError("no PEERS line in the LAMMPS output")
-    return int(m.group(3))
+    return int(m.group(3)), float(m.group(4))
 
 
 def granfric_cmd(n, phi, tmax, dtmft):
@@ -136,8 +137,9 @@ def granfric_cmd(n, phi, tmax, dtmft):
             str(phi), "-var", "tmax", str(tmax), "-var", "dtmft", str(dtmft)]
 
 
-def rates_agree(c_peer, c_ours, tol=RATE_TOLERANCE):
-    return c_peer > 0 and abs(c_ours - c_peer) <= tol * c_peer
+def agree(peer, ours, tol=RATE_TOLERANCE):
+    """the guard: ours within tol of the peer's (collision counts, pressures)"""
+    return peer > 0 and abs(ours - peer) <= tol * peer
 
 
 def run(points, peer_src, rounds, out):
@@ -157,7 +159,7 @@ def run(points, peer_src, rounds, out):
                 if who == "peer":
                     b["coll_peer"], b["press_peer"] = parse_peer(text)
                 else:
-                    b["coll_ours"] = parse_granfric(text)
+                    b["coll_ours"], b["press_ours"] = parse_granfric(text)
                 b[who] = min(b[who], cpu)
                 b["rss_" + who] = max(b["rss_" + who], rss)
                 print(f"round {r + 1}: N {n} phi {phi} {who} {cpu:.2f} s", flush=True)
@@ -170,20 +172,21 @@ def report(points, best, rounds, out):
     rows = []
     lines = [f"GRANFRIC (fix hardsphere/ed through LAMMPS) against Smallenburg's EDMD Single, "
              f"fastest of {rounds} interleaved rounds, whole-process CPU (user + sys)", "",
-             "| N | phi | time | collisions peer / GRANFRIC | rates | CPU s peer | CPU s GRANFRIC "
-             "| GRANFRIC faster by | peak RSS B/particle peer / GRANFRIC | peer P* |",
+             "| N | phi | time | collisions peer / GRANFRIC | P* peer / GRANFRIC | guard "
+             "| CPU s peer | CPU s GRANFRIC | GRANFRIC faster by | peak RSS B/particle peer / GRANFRIC |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for (n, phi, tmax, dtmft), b in zip(points, best):
-        ok = rates_agree(b["coll_peer"], b["coll_ours"])
+        ok = agree(b["coll_peer"], b["coll_ours"]) and agree(b["press_peer"], b["press_ours"])
         ratio = b["peer"] / b["ours"]
         rows.append(dict(N=n, phi=phi, time=tmax, dtmft=dtmft, coll_peer=b["coll_peer"],
-                         coll_granfric=b["coll_ours"], rates_agree=ok, cpu_peer=b["peer"],
+                         coll_granfric=b["coll_ours"], pressure_peer=b["press_peer"],
+                         pressure_granfric=b["press_ours"], same_physics=ok, cpu_peer=b["peer"],
                          cpu_granfric=b["ours"], ratio=ratio, rss_peer=b["rss_peer"] / n,
-                         rss_granfric=b["rss_ours"] / n, pressure_peer=b["press_peer"]))
+                         rss_granfric=b["rss_ours"] / n))
         lines.append(f"| {n} | {phi} | {tmax:g} | {b['coll_peer']} / {b['coll_ours']} | "
-                     f"{'same' if ok else 'DIFFER'} | {b['peer']:.2f} | {b['ours']:.2f} | "
-                     f"x{ratio:.2f} | {b['rss_peer'] / n:.0f} / {b['rss_ours'] / n:.0f} | "
-                     f"{b['press_peer']:.3f} |")
+                     f"{b['press_peer']:.3f} / {b['press_ours']:.3f} | {'same' if ok else 'DIFFER'} | "
+                     f"{b['peer']:.2f} | {b['ours']:.2f} | x{ratio:.2f} | "
+                     f"{b['rss_peer'] / n:.0f} / {b['rss_ours'] / n:.0f} |")
     print("\n".join(lines))
     with open(os.path.join(out, "peers.csv"), "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
