@@ -745,6 +745,9 @@ void FixHardsphereED::finish_window(double dt)
   // time average of the impulsive forces' virial over the window (last holds the whole system's
   // on every rank; compute pressure sums the ranks' shares, so rank 0 gives it all)
   for (int k = 0; k < 6; k++) virial[k] = comm->me == 0 ? last.virial[k] * force->mvv2e / dt : 0.0;
+  // each wall's share (the core's walls are in the order of the wall fixes)
+  for (size_t k = 0; k < walls.size() && k < last.wall_hits.size(); k++)
+    walls[k]->tally(last.wall_hits[k], &last.wall_impulse[3 * k], last.wall_work[k], dt);
 }
 
 double FixHardsphereED::compute_vector(int n)

@@ -144,6 +144,8 @@ class FixHardsphereED : public Fix {
   void written_state(int s, double t, double *w) const;
   void pack_atom(int i, double t0, double *b) const;
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
+  template <class T>
+  void sum_over_ranks(std::vector<T> &v, MPI_Datatype type) const;
   bool check_overlaps = false;
   bool allow_overlap = false;            // keyword overlap allow: overlapping pairs separate
   void report_overlaps(bool partial);

@@ -78,6 +78,16 @@ double speed2(const double *v)
 }
 }    // namespace
 
+// v summed over all ranks, element by element (every rank holds the same length)
+template <class T>
+void FixHardsphereED::sum_over_ranks(std::vector<T> &v, MPI_Datatype type) const
+{
+  if (v.empty()) return;
+  std::vector<T> sum(v.size());
+  MPI_Allreduce(v.data(), sum.data(), (int) v.size(), type, MPI_SUM, world);
+  v.swap(sum);
+}
+
 bool FixHardsphereED::window_domain(double t0, double dt)
 {
   const int nlocal = atom->nlocal, nprocs = comm->nprocs, me = comm->me;
@@ -745,11 +755,10 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   MPI_Allreduce(esum, gesum, 9, MPI_DOUBLE, MPI_SUM, world);
   long lmax = last.max_collisions_one_particle, gmax;
   MPI_Allreduce(&lmax, &gmax, 1, MPI_LONG, MPI_MAX, world);
-  if (!last.gamma_hist.empty()) {
-    std::vector<long> h(last.gamma_hist.size());
-    MPI_Allreduce(last.gamma_hist.data(), h.data(), (int) h.size(), MPI_LONG, MPI_SUM, world);
-    last.gamma_hist = h;
-  }
+  sum_over_ranks(last.gamma_hist, MPI_LONG);
+  sum_over_ranks(last.wall_hits, MPI_LONG);
+  sum_over_ranks(last.wall_impulse, MPI_DOUBLE);
+  sum_over_ranks(last.wall_work, MPI_DOUBLE);
   last.collisions = gsum[0];
   last.sliding = gsum[1];
   last.tc_elastic = gsum[2];

@@ -7,6 +7,7 @@
 #include "fix_hardsphere_ed.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "domain.h"
 #include "error.h"
 #include "force.h"
@@ -87,9 +88,10 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
   if (amplitude > 0.0 && temperature >= 0.0)
     error->all(FLERR, "Fix hardsphere/wall: a thermal wall cannot vibrate");
   vector_flag = 1;
-  size_vector = 2;
+  size_vector = 10;
   global_freq = 1;
   extvector = 0;
+  restart_global = 1;
 }
 
 int FixHardsphereWall::setmask()
@@ -144,12 +146,50 @@ granfric::EDWall FixHardsphereWall::wall() const
   return w;
 }
 
-// the wall's position and velocity now
+void FixHardsphereWall::tally(long hits, const double *impulse, double work, double dt)
+{
+  total_hits += (double) hits;
+  total_work += work;
+  total_time += dt;
+  for (int d = 0; d < 3; d++) {
+    step_force[d] = impulse[d] / dt;
+    total_impulse[d] += impulse[d];
+  }
+}
+
+// 1-2: the wall's position and velocity now; 3-5: the force on it averaged over the last step;
+// 6-8: averaged since the fix was defined; 9: collisions with it; 10: energy it gave the particles
 double FixHardsphereWall::compute_vector(int n)
 {
-  const granfric::EDWall w = geometry();
-  double p, v, a;
-  const double t = update->atime + (update->ntimestep - update->atimestep) * update->dt;
-  w.motion(t, p, v, a);
-  return n == 0 ? p : v;
+  if (n < 2) {
+    const granfric::EDWall w = geometry();
+    double p, v, a;
+    const double t = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+    w.motion(t, p, v, a);
+    return n == 0 ? p : v;
+  }
+  const double m2f = 1.0 / force->ftm2v;    // (momentum / time -> force units)
+  if (n < 5) return step_force[n - 2] * m2f;
+  if (n < 8) return total_time > 0.0 ? total_impulse[n - 5] / total_time * m2f : 0.0;
+  return n == 8 ? total_hits : total_work * force->mvv2e;
+}
+
+void FixHardsphereWall::write_restart(FILE *fp)
+{
+  const double list[6] = {total_hits, total_impulse[0], total_impulse[1], total_impulse[2],
+                          total_work, total_time};
+  if (comm->me == 0) {
+    const int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 6, fp);
+  }
+}
+
+void FixHardsphereWall::restart(char *buf)
+{
+  const auto *list = (const double *) buf;
+  total_hits = list[0];
+  for (int d = 0; d < 3; d++) total_impulse[d] = list[1 + d];
+  total_work = list[4];
+  total_time = list[5];
 }

@@ -34,6 +34,11 @@ class FixHardsphereWall : public Fix {
   std::string face() const { return std::string(1, "xyz"[dim]) + (side < 0 ? "lo" : "hi"); }
   granfric::EDWall geometry() const;    // position and motion only
   double compute_vector(int) override;
+  // one step's collisions with the wall (from fix hardsphere/ed): their number, the momentum
+  // they gave the wall (3 values), the energy the wall gave the particles, the step length
+  void tally(long hits, const double *impulse, double work, double dt);
+  void write_restart(FILE *) override;
+  void restart(char *) override;
 
  private:
   int dim, side;
@@ -45,6 +50,10 @@ class FixHardsphereWall : public Fix {
   long seed;
   double amplitude, omega;            // vibration, 0: static
   bool sine;                          // sinusoidal (else piecewise parabolic)
+  double step_force[3] = {0, 0, 0};   // force on the wall, averaged over the last step
+  // since the fix was defined (kept in restart files): collisions, momentum given to the wall,
+  // energy given to the particles, time
+  double total_hits = 0.0, total_impulse[3] = {0, 0, 0}, total_work = 0.0, total_time = 0.0;
 };
 
 }    // namespace LAMMPS_NS

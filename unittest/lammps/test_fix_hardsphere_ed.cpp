@@ -642,6 +642,78 @@ TEST(FixHardsphereWall, EqualsReferenceAndHolds)
   }
 }
 
+// The wall's force outputs: the momentum balance of a gas under gravity above a floor (no lid:
+// the box follows the gas) holds exactly, step by step and over the whole run (impulse on the
+// floor = weight x time + the particles' momentum change), and for an elastic gas (a steady
+// atmosphere) the floor's force averaged over a long run equals the weight within 0.5 %; the
+// floor's collisions and energy are the fix's.
+TEST(FixHardsphereWall, FloorCarriesTheWeight)
+{
+  auto lmp = make_lammps();
+  std::string s = gas(2, 120, 20.0, 91);
+  s.replace(s.find("boundary p p p"), 14, "boundary p m p");
+  s.replace(s.find("NULL overlap"), 4, "inner");
+  s.replace(s.find("create_atoms"), 0, "region inner block EDGE EDGE 0.6 19.4 EDGE EDGE\n");
+  const double g = 0.3, dt = 0.5;
+  // (perfectly rough and elastic: the floor exchanges spin with the gas, not energy)
+  run(lmp.get(), s + "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 1.0\n"
+                     "fix ed all hardsphere/ed gravity 0.0 -0.3 0.0\n"
+                     "fix floor all hardsphere/wall ylo 0.0\ntimestep 0.5\nthermo 0\nrun 0 post no");
+  auto *atom = lmp->atom;
+  double weight = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) weight += atom->rmass[i] * g;
+  auto momentum = [&]() {
+    double p = 0.0;
+    for (int i = 0; i < atom->nlocal; i++) p += atom->rmass[i] * atom->v[i][1];
+    return p;
+  };
+  auto *floor = lmp->modify->get_fix_by_id("floor"), *ed = lmp->modify->get_fix_by_id("ed");
+  const double p0 = momentum();
+  double p_prev = p0;
+  for (int step = 0; step < 20; step++) {
+    run(lmp.get(), "run 1 post no");
+    // d p / dt = -weight - (force on the floor), over each step
+    const double p = momentum();
+    EXPECT_NEAR((p - p_prev) / dt, -weight - floor->compute_vector(3), 1e-9 * weight) << "step " << step;
+    p_prev = p;
+  }
+  run(lmp.get(), "run 4000 post no");
+  const double T = 4020 * dt, favg = floor->compute_vector(6);
+  EXPECT_NEAR((momentum() - p0) / T, -weight - favg, 1e-9 * weight) << "in total";
+  EXPECT_NEAR(-favg / weight, 1.0, 0.005) << "the floor carries the weight";
+  EXPECT_GT(floor->compute_vector(8), 1000.0);
+  EXPECT_EQ(floor->compute_vector(8), ed->compute_vector(9)) << "wall collisions";
+  EXPECT_NEAR(floor->compute_vector(9), ed->compute_vector(10), 1e-9)
+      << "energy given by the floor = the fix's wall energy";
+}
+
+// the floor's totals (collisions, momentum and energy exchanged, time) continue across a restart
+TEST(FixHardsphereWall, TotalsKeptInRestartFiles)
+{
+  std::string s = gas(2, 80, 20.0, 17);
+  s.replace(s.find("boundary p p p"), 14, "boundary p m p");
+  s.replace(s.find("NULL overlap"), 4, "inner");
+  s.replace(s.find("create_atoms"), 0, "region inner block EDGE EDGE 0.6 19.4 EDGE EDGE\n");
+  const std::string fixes = "fix ed all hardsphere/ed gravity 0.0 -0.5 0.0 tc 0.05\n"
+                            "fix floor all hardsphere/wall ylo 0.0 coeffs 0.8 -1.0\n"
+                            "timestep 0.2\nthermo 0\n";
+  const std::string rst = "granfric_test_wall_" + std::to_string(::getpid()) + ".restart";
+  double before[10];
+  {
+    auto a = make_lammps();
+    run(a.get(), s + "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.9 -1.0\n" + fixes +
+                     "run 50 post no\nwrite_restart " + rst);
+    for (int k = 0; k < 10; k++) before[k] = a->modify->get_fix_by_id("floor")->compute_vector(k);
+  }
+  auto b = make_lammps();
+  run(b.get(), "read_restart " + rst + "\ncomm_modify vel yes\n" + fixes);
+  std::remove(rst.c_str());
+  auto *floor = b->modify->get_fix_by_id("floor");
+  EXPECT_GT(before[8], 10.0) << "collisions with the floor";
+  EXPECT_LT(before[9], 0.0) << "an inelastic floor takes energy";
+  for (int k = 5; k < 10; k++) EXPECT_EQ(floor->compute_vector(k), before[k]) << "element " << k + 1;
+}
+
 // a ball dropped on an inelastic floor bounces infinitely often in finite time (r^k series):
 // without the TC model the event cap stops the run with a clear error, with it the ball rests
 TEST(FixHardsphereWall, BouncingBallCollapseAndTC)

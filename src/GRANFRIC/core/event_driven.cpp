@@ -8,6 +8,14 @@
 
 namespace granfric {
 
+// a += b elementwise (a grows to b's size)
+template <class T>
+static void add_to(std::vector<T> &a, const std::vector<T> &b)
+{
+  if (a.size() < b.size()) a.resize(b.size(), T(0));
+  for (size_t k = 0; k < b.size(); k++) a[k] += b[k];
+}
+
 void EDStats::add(const EDStats &o)
 {
   collisions += o.collisions;
@@ -22,8 +30,10 @@ void EDStats::add(const EDStats &o)
   injected += o.injected;
   global_events += o.global_events;
   for (int k = 0; k < 6; k++) virial[k] += o.virial[k];
-  if (gamma_hist.size() < o.gamma_hist.size()) gamma_hist.resize(o.gamma_hist.size(), 0);
-  for (size_t k = 0; k < o.gamma_hist.size(); k++) gamma_hist[k] += o.gamma_hist[k];
+  add_to(gamma_hist, o.gamma_hist);
+  add_to(wall_hits, o.wall_hits);
+  add_to(wall_impulse, o.wall_impulse);
+  add_to(wall_work, o.wall_work);
 }
 
 // the shape factor of every type (index 0 unused): the options', or 0.4 (solid spheres)
@@ -982,6 +992,10 @@ void EventDriven::collide_wall(int i)
     if (tc_elastic) stats.tc_elastic++;
     stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
     add_virial(stats.virial, h.a * n, dP);
+    const int k = s.wall;
+    stats.wall_hits[k]++;
+    for (int d = 0; d < 3; d++) stats.wall_impulse[3 * k + d] -= dP[d];
+    stats.wall_work[k] += dE;
   }
   if (ni > opt.max_collisions) {
     std::ostringstream s;
@@ -1240,6 +1254,9 @@ EDStats EventDriven::advance_to(double t_end)
 {
   stats = EDStats();
   stats.gamma_hist.assign(std::max(0, opt.gamma_bins), 0);
+  stats.wall_hits.assign(opt.walls.size(), 0);
+  stats.wall_impulse.assign(3 * opt.walls.size(), 0.0);
+  stats.wall_work.assign(opt.walls.size(), 0.0);
   for (auto &s : S) s.ncollisions = 0;
   const int n = (int) H.size();
   refresh();

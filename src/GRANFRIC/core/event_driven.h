@@ -123,6 +123,10 @@ struct EDStats {
   // the contact vector (from partner j's centre to i's, or from the wall's contact point to the
   // particle's centre) and dP the impulse on i; components xx, yy, zz, xy, xz, yz (r_x dP_y ...)
   double virial[6] = {0, 0, 0, 0, 0, 0};
+  // per wall (EDOptions::walls order): collisions, the momentum given to the wall (3 values per
+  // wall, minus the sum of the particles' impulses) and the kinetic energy it gave the particles
+  std::vector<long> wall_hits;
+  std::vector<double> wall_impulse, wall_work;
   long global_events = 0;
   std::vector<long> gamma_hist;         // impact angles, EDOptions::gamma_bins bins
   void add(const EDStats &o);
