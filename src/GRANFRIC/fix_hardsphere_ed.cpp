@@ -666,12 +666,24 @@ void FixHardsphereED::window_gather(double t0, double dt)
     last = ed.advance_to(dt);
   } catch (granfric::EventCapError &e) {
     queue_valid = false;
+    if (e.kind == granfric::EventCapError::CROSSINGS)
+      error->all(FLERR,
+                 "Fix hardsphere/ed: {} cell crossings within step {} exceed maxevents x atoms "
+                 "= {}; atom {} was crossing at speed {:.6g}: atoms move far faster than the system's "
+                 "scale (did a collision law create energy, e.g. hardsphere/jz with kappa_d > "
+                 "kappa_s, or does an atom start much faster than the others?)",
+                 e.n, update->ntimestep, e.n - 1, (tagint) otags[e.i], e.speed);
+    bool creating = false;
+    for (const auto &law : law_table()) creating = creating || law.can_create_energy();
     error->all(FLERR,
                "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
-               "last one with atom {} at time {}: inelastic collapse. Use the TC model (keyword "
-               "tc) or raise maxevents",
-               (tagint) otags[e.i], e.n, update->ntimestep, maxevents,
-               (tagint) otags[e.j], t0 + e.t);
+               "last one with atom {} at time {}: {}",
+               (tagint) otags[e.i], e.n, update->ntimestep, maxevents, (tagint) otags[e.j],
+               t0 + e.t,
+               creating ? "a collision law here can create energy (hardsphere/jz with kappa_d > "
+                          "kappa_s), which can run away; use kappa_d <= kappa_s, or raise "
+                          "maxevents if the energy stays bounded"
+                        : "inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
   } catch (std::exception &e) {
     core_failed(e, true);
   }

@@ -415,6 +415,41 @@ TEST(FixHardsphereED, CollapseStopsWithClearErrorWithoutTC)
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 120.0);
 }
 
+// Energy that runs away (Jenkins-Zhang with kappa_d > kappa_s; the temperature grows from 1 to
+// ~150 in 35 steps and then without bound) stops with an error that names energy creation, not
+// inelastic collapse, within bounded time; an atom that crosses cells without end (alone, at
+// 1e8) stops at the cap on cell crossings (maxevents x atoms per step), which names it and its
+// speed.
+TEST(FixHardsphereED, RunawayAndFastAtomsStopWithClearErrors)
+{
+  const std::string lattice = "units lj\ndimension 2\natom_style sphere\nboundary p p p\n"
+                              "comm_modify vel yes\nlattice sq 0.3\nregion box block 0 10 0 10 -0.5 0.5\n"
+                              "create_box 1 box\ncreate_atoms 1 box\nset type 1 diameter 1.0\n"
+                              "set type 1 mass 1.0\nvelocity all create 1.0 4321 loop geom mom yes dist gaussian\n";
+  const auto t0 = std::chrono::steady_clock::now();
+  {
+    auto lmp = make_lammps();
+    run(lmp.get(), lattice + "pair_style hardsphere/jz inertia disc\npair_coeff * * 0.05 0.05 0.1 0.5\n"
+                             "fix ed all hardsphere/ed maxevents 1000\ntimestep 1\nthermo 0");
+    EXPECT_LMP_ERROR(lmp.get(), "run 60 post no",
+                     "atom [0-9]+ had 1001 collisions within step [0-9]+ \\(maxevents 1000\\).*can create "
+                     "energy \\(hardsphere/jz with kappa_d > kappa_s\\)");
+  }
+  {
+    // (alone in its box: it crosses cells and never collides)
+    auto lmp = make_lammps();
+    run(lmp.get(), "units lj\ndimension 2\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n"
+                   "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 5 0\n"
+                   "set type 1 diameter 1.0\nset type 1 mass 1.0\nvelocity all set 1e8 3.0 0.0\n"
+                   "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
+                   "fix ed all hardsphere/ed maxevents 10\ntimestep 1\nthermo 0");
+    EXPECT_LMP_ERROR(lmp.get(), "run 1 post no",
+                     "11 cell crossings within step 1 exceed maxevents x atoms = 10; atom 1 was "
+                     "crossing at speed 1e\\+08");
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 60.0);
+}
+
 TEST(FixHardsphereED, CollapseAvoidedWithTC)
 {
   auto lmp = make_lammps();

@@ -45,6 +45,9 @@ struct LawParams {
 
   // first violated range as a message, or nullptr when the values are admissible
   const char *check() const;
+  // can a collision gain energy? (Jenkins-Zhang with kappa_d > kappa_s: a sliding contact then
+  // takes a larger tangential impulse than sticking would)
+  bool can_create_energy() const { return kind == LawKind::JZ && mu_d > mu_s; }
 };
 
 struct Body {

@@ -1098,12 +1098,25 @@ void EventDriven::collide_pair(int i)
   reschedule(j);
 }
 
+// one more crossing (or list rebuild) of particle i in this window, within the cap
+void EventDriven::count_crossing(int i)
+{
+  if (++window_crossings <= crossing_cap) return;
+  const double speed = norm(vel(i, now));
+  std::ostringstream s;
+  s << "cell crossings in one window exceed the cap (" << crossing_cap
+    << " = the collision cap times the number of particles); particle " << ext[i]
+    << " was crossing at speed " << speed;
+  throw EventCapError(s.str(), ext[i], ext[i], now, window_crossings, EventCapError::CROSSINGS, speed);
+}
+
 void EventDriven::cross(int i)
 {
   if (lists) {
     list_rebuild(i);
     return;
   }
+  count_crossing(i);
   const Hot &q = H[i];
   Sched &p = S[i];
   const int d = p.xdim, dir = p.xdir;
@@ -1259,6 +1272,8 @@ EDStats EventDriven::advance_to(double t_end)
   stats.wall_work.assign(opt.walls.size(), 0.0);
   for (auto &s : S) s.ncollisions = 0;
   const int n = (int) H.size();
+  window_crossings = 0;
+  crossing_cap = opt.max_collisions * (long) std::max(1, n);
   refresh();
   if (crossings_since_reorder > 4L * n) reorder();
   size_t g = 0;

@@ -153,16 +153,23 @@ struct EDAccounting {
   const uint8_t *counted = nullptr;
 };
 
-// thrown when a particle exceeds the per-window collision cap (inelastic collapse)
+// thrown when a window exceeds its work cap: a particle with more than max_collisions
+// collisions (COLLISIONS: inelastic collapse), or more than max_collisions times the number of
+// particles cell crossings or list rebuilds in all (CROSSINGS: particles far faster than the
+// system's scale, e.g. after a law created energy)
 class EventCapError : public std::runtime_error {
  public:
-  EventCapError(const std::string &what, int i_, int j_, double t_, long n_) :
-      std::runtime_error(what), i(i_), j(j_), t(t_), n(n_)
+  enum Kind { COLLISIONS, CROSSINGS };
+  EventCapError(const std::string &what, int i_, int j_, double t_, long n_, Kind k = COLLISIONS,
+                double speed_ = 0.0) :
+      std::runtime_error(what), i(i_), j(j_), t(t_), n(n_), kind(k), speed(speed_)
   {
   }
-  int i, j;      // particle indices of the collision that crossed the cap
+  int i, j;      // particle indices of the event that crossed the cap (j = i: not a pair)
   double t;      // window time
-  long n;        // collisions of particle i in this window
+  long n;        // COLLISIONS: collisions of particle i in this window; CROSSINGS: all crossings
+  Kind kind;
+  double speed;  // CROSSINGS: particle i's speed then
 };
 
 class EventDriven {
@@ -401,6 +408,8 @@ class EventDriven {
   EDAccounting acct;
   bool counted(int i) const { return !acct.counted || acct.counted[ext[i]]; }
   long key(int i) const { return acct.key ? acct.key[ext[i]] : (long) ext[i]; }
+  long window_crossings = 0, crossing_cap = 0;    // (this window's, and its cap)
+  void count_crossing(int i);            // throws EventCapError past the cap
   std::vector<double> gtimes;            // pending global events
   std::function<void(int)> gapply;
   void global_event(int k);

@@ -134,6 +134,7 @@ bool EventDriven::build_all_lists()
 // trajectory is untouched (its stored state is not advanced), so rebuilds change no rounding.
 void EventDriven::list_rebuild(int i)
 {
+  count_crossing(i);
   list_drop(i);
   cell_remove(i);
   XN[i] = pos(i, now);
