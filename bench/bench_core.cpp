@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC benchmark of the event-driven core alone (no LAMMPS): collisions per second per core
 // for 2D discs / 3D spheres at a given fraction and N, windows of dt mean free times, memory per
 // particle. Prints its figures; it is not a test.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC benchmark: what a global event (a random kick of every particle, fix hardsphere/kick)
 // costs the event-driven core, per particle. A kick changes every velocity, so every particle's
 // next event must be predicted afresh: the core brings all particles to the kick time and runs

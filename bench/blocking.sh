@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # What processing one system in cache-sized spatial blocks could give towards a cost per
 # collision that stays flat from N = 10^3 to 10^6: bench_core at N = 10^6 as one system, as K
 # independent blocks (the ideal: no shell), and as blocks that carry the shell of copies an exact

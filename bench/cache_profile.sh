@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # What bounds the cost per collision at large N: instructions and simulated last-level cache
 # misses per collision of the event-driven core (cachegrind, reproducible on a noisy machine),
 # 2D, fraction 0.3, one step per mean free time, for each N given (default 1e4 and 1e5; 1e6

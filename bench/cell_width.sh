@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # GRANFRIC benchmark: instructions per collision of the event-driven core against the width of
 # its cells (callgrind, reproducible on a shared machine), for elastic smooth discs (2D) or
 # spheres (3D) at several fractions; "auto" is the core's own choice (EventDriven::setup_cells).

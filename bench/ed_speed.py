@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """GRANFRIC benchmark: collisions per second per core of fix hardsphere/ed through LAMMPS, for
 2D and 3D, N = 10^3 ... 10^6, fractions 0.05 and 0.3, and steps of 0.1 ... 10 mean free times;
 memory per particle, with the LAMMPS settings doc/fix_hardsphere_ed.rst recommends (in.speed's

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC benchmark: what one cache miss costs on this machine, to set against the misses per
 // collision of the event loop (bench/cache_profile.sh). For buffers from 16 KiB to 512 MiB
 // (allocated like the core's large arrays: 2 MiB aligned, transparent huge pages): the time of

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """GRANFRIC benchmark: strong scaling of fix hardsphere/ed over MPI ranks (parallel domain),
 2D elastic discs at area fractions 0.05 and 0.3, N = 10^4 ... 10^6, steps of 1 ... 8 mean
 free times. For each case: CPU time per collision on 1 and 2 ranks (LAMMPS loop time), the

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """GRANFRIC against the fastest stand-alone event-driven code for hard spheres, side by side.
 
 The peer is Smallenburg's EDMD "Single" (neighbour lists, one event per particle; MIT licence;

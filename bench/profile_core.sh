@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # Instruction-level profile of the event-driven core (reproducible on a noisy machine):
 # callgrind on bench_core, 2D, fraction 0.3, N = 10^4, 5 collisions per particle.
 #   bash bench/profile_core.sh [build dir]

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """GRANFRIC benchmark "Speed against accuracy" (bench/README.md): CPU cost against accuracy of three
 ways to simulate the same granular gas, on two scenes:
 

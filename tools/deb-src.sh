@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # Make Debian source packages of trixie (LAMMPS 4Feb2025) and bookworm (googletest 1.12.1)
 # available to apt-get source. Idempotent; needs root the first time.
 set -euo pipefail

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # googletest 1.12.1 source tarball from Debian's source package (the exact file LAMMPS's unit-test
 # build downloads otherwise), for building LAMMPS's own test harness offline. Prints its path.
 #   tools/fetch-googletest.sh [CACHE_DIR]

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # Obtain the LAMMPS 4Feb2025 source tree from Debian's (trixie) source package, verify its
 # checksum and unpack it into a cache outside the repository. Prints the path of the unpacked
 # tree's top directory on stdout (the last line). Idempotent: a verified tree is reused.

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # Install the Debian packages GRANFRIC needs, only if some are missing (idempotent).
 # Run as root (CI and these machines) or it prints the apt-get command to run.
 set -euo pipefail

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # Set up GRANFRIC on a fresh Debian 12 machine and run the main job.
 #   bash tools/setup.sh        -> out/ (figures + reports); build in $GRANFRIC_BUILD (default build/)
 # Steps: Debian packages (if missing) -> LAMMPS 4Feb2025 source from Debian (cached in

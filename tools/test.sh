@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # The whole GRANFRIC test suite: installs what is missing, builds LAMMPS + the plugin (ccache),
 # runs every test through CTest (core, LAMMPS-side, scripts serial and under MPI, Python tools).
 #   bash tools/test.sh            (build directory: $GRANFRIC_BUILD, default <repo>/build)

@@ -1,4 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: compute ID group hardsphere/collisions fixID [bins N]
    Statistics of the collisions processed by fix hardsphere/ed fixID over a window (the time
    since this compute was last invoked, or since the run began):

@@ -1,4 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: compute ID group hardsphere/convection
    global vector (Risso et al. 2005, eqs 10-11), x measured from the lower box edge:
      Psi1 = (1/N) sum v_y sin(2 pi x / L_x),  Psi2 = -(1/N) sum v_y cos(2 pi x / L_x)

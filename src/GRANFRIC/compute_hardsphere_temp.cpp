@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 /* ----------------------------------------------------------------------
    GRANFRIC: compute hardsphere/temp. Temperatures per degree of freedom (doc/conventions.rst):
    2d: T_tr = E_tr/(N k_B), T_rot = 2 E_rot/(N k_B) (one spin dof, about z);

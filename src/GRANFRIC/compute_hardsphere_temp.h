@@ -1,4 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: compute ID group hardsphere/temp [inertia sphere|disc|<q>]
    global vector: T_tr, T_rot, R = T_rot/T_tr, E_tr, E_rot
 ------------------------------------------------------------------------- */

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 /* ----------------------------------------------------------------------
    GRANFRIC: fix hardsphere/ed (see fix_hardsphere_ed.h and doc/fix_hardsphere_ed.rst)
 ------------------------------------------------------------------------- */
@@ -8,6 +10,7 @@
 #include "fix_hardsphere_wall.h"
 
 #include "atom.h"
+#include "citeme.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -27,6 +30,16 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using granfric::INF;
 
+// what LAMMPS lists at the end of a run that used GRANFRIC (see CITATION.cff)
+static const char cite_granfric[] =
+    "GRANFRIC package: exact event-driven rough hard spheres and discs for LAMMPS\n\n"
+    "@Misc{GRANFRIC,\n"
+    " author = {{The GRANFRIC developers}},\n"
+    " title = {{GRANFRIC}: exact event-driven rough hard spheres and discs for {LAMMPS}},\n"
+    " year = 2026,\n"
+    " note = {Version 0.1, GPL-2.0-or-later}\n"
+    "}\n\n";
+
 // per-atom values exchanged to build the window: tag, x, v, omega, radius, rmass, type, tlast,
 // mask
 static constexpr int NPACK = 15;
@@ -37,6 +50,7 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), tc(0.0), maxevents(1000000), tlast(nullptr), pair(nullptr), cum_time(0.0),
     gamma_bins(0), queue_valid(false), prev_dt(0.0), parallel(DOMAIN), reach(1.2), widen(1.0)
 {
+  if (lmp->citeme) lmp->citeme->add(cite_granfric);
   gravity[0] = gravity[1] = gravity[2] = 0.0;
   int iarg = 3;
   while (iarg < narg) {

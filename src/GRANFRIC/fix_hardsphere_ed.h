@@ -1,4 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: fix hardsphere/ed, the exact event-driven integrator for hard spheres and discs.
 
    fix ID group hardsphere/ed [gravity gx gy gz] [tc t_c] [maxevents N] [parallel domain|gather]

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // clang-format off
 /* ----------------------------------------------------------------------
    GRANFRIC: fix hardsphere/ed, domain-decomposed windows (keyword parallel domain).

@@ -1,4 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: fix ID group hardsphere/kick f_dr v_dr seed [momentum yes|no] [spin fraction]
 
    Homogeneous stochastic driving (Herbst et al. 2005, eqs 7-9): at the times k/f_dr every atom

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 /* ----------------------------------------------------------------------
    GRANFRIC: hard-sphere collision laws as LAMMPS pair styles (see pair_hardsphere.h)
 ------------------------------------------------------------------------- */

@@ -1,4 +1,6 @@
 /* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: hard-sphere collision laws as LAMMPS pair styles.
 
    pair_style hardsphere/rough  [inertia sphere|disc|<q>]   pair_coeff I J r beta

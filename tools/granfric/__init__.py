@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """GRANFRIC Python tools: theory, analysis and plots for the GRANFRIC LAMMPS package.
 
 Put <repo>/tools on sys.path (PYTHONPATH=tools) and import granfric.<module>.

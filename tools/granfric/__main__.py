@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """GRANFRIC tools command line.
 
     /usr/bin/python3 tools/granfric reproduce herbst2005|luding1998|risso2005 [--quick|--full] [--out DIR]

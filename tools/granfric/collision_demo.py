@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Collision-law demonstration (the main job until the integrator lands): for the three papers'
 parameter sets, a table of post-collision states and energy loss, and a figure of the tangential
 restitution and the energy loss against the impact angle, all computed by the C++ core.

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Risso et al. 2005, Figs 3-5 and Table I: thermal convection of 1000 discs on a vibrated base
 (examples/convection). A kappa scan continues each run from the previous configuration; the
 order parameters (Psi1, Psi2), sampled every few oscillations after a transient, are clustered

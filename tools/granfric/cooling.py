@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Homogeneous cooling of rough spheres and discs with constant normal and tangential restitution
 (Luding, Huthmann, McNamara & Zippelius 1998; Herbst et al. 2005 model A with no driving).
 

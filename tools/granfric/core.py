@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """ctypes access to the GRANFRIC C++ physics core (libgranfric_capi.so): the very collision law
 the LAMMPS styles use, so Monte Carlo averages and tables come from one code path."""
 import ctypes

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Kinetic theory of the homogeneous granular gas without the Gaussian closure: Direct Simulation
 Monte Carlo (DSMC) of the homogeneous Enskog-Boltzmann equation for equal rough hard discs (2D)
 or spheres (3D), with the collision map of the C++ core (core.collide_batch: the very law the

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Risso et al. 2005, Sec. II: mean energy change per collision <dE>(kappa, q) of equal discs over
 a Maxwellian at T0, by Monte Carlo through the same C++ collision law the simulations use
 (core/energy_loss.cpp: collisions weighted by the normal relative speed, spins Maxwellian with

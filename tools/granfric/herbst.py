@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Herbst et al. 2005 scene: randomly driven 2D monolayer of rough spheres (q = 2/5) with Coulomb
 friction (Walton law), simulated with GRANFRIC (examples/driven) and compared with the mean-field
 model E (granfric.meanfield) in the steady state (report.md table, driven.png), plus the paper's

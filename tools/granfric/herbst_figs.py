@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Figures 2, 3 and 5-11 of Herbst, Cafiero, Zippelius, Herrmann & Luding, Phys. Fluids 17,
 107102 (2005): GRANFRIC simulations of the randomly driven monolayer (examples/driven, through
 granfric.herbst.simulate) against the mean-field models A-E (granfric.meanfield), with the

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """K-means clustering of convection order parameters (Psi1, Psi2) and the classification of a
 vibrated bed's state into 0, 1 or 2 convection rolls (Risso et al. 2005, Fig. 4).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Readers for LAMMPS output: thermo blocks of log files and fix ave/time files."""
 import numpy as np
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Luding et al. 1998 scene: free cooling of rough discs (2D) and spheres (3D) with constant r
 and beta, simulated with GRANFRIC (examples/cooling) and compared with two theories of the
 homogeneous cooling state: the mean-field ODEs (granfric.cooling: Gaussian velocities and spins,

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Driven mean-field theory of rough granular gases with Coulomb friction (Walton law):
 Herbst, Cafiero, Zippelius, Herrmann & Luding, Phys. Fluids 17, 107102 (2005), models A-E, plus
 the 3D homogeneous-cooling form of model E (appendix A23-A24).

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Risso et al. 2005, Fig. 1: lines of equal mean energy loss per collision <dE> in the (kappa, q)
 plane (q = q_n = q_t, kappa = kappa_s = kappa_d, discs, T0 = 1), from the closed form (model E of
 the same law) with Monte Carlo points through the C++ law, and the kappa of maximum loss.

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """The convection scene (examples/convection, Risso Figs 3-5) through LAMMPS: a bed of 1000
 frictional discs on the vibrated base is static at kappa = 0.005 and convects in one roll at
 kappa = 0.03 (q = 0, g = 0.015625), classified by K-means on (Psi1, Psi2); the static bed

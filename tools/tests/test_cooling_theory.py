@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Homogeneous-cooling theory (granfric.cooling): limits that follow from conservation laws, and
 the per-collision averages against Monte Carlo through the C++ collision law."""
 import math

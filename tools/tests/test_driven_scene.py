@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """The driven scene (examples/driven, Herbst et al. 2005) in the steady state against the
 mean-field theory where it is closed form: mu = inf (constant tangential restitution, model A):
 R = B/C (the rotational equation has no driving) and T_tr^3/2 = H_dr / (G (A - B R)), with

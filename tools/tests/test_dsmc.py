@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """DSMC of the homogeneous Enskog-Boltzmann equation (granfric.dsmc) against what it must
 reproduce independently of any closure: the batch collision call equals the single one,
 conservation in the elastic limits, the collision frequency of a Maxwellian gas (Enskog, as

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Theory behind the Herbst et al. 2005 figures (granfric.herbst_figs): rt(gamma) of the C++ Walton
 law against eqs 5-6 (Fig. 2), the impact-angle distribution eq 12 against a Monte Carlo of
 flux-weighted collisions (Fig. 3), R(mu -> inf) = 2(1+rt)/(9-5rt) against model A (Fig. 7), the

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """K-means classification of convection states (Risso Fig. 4) on synthetic (Psi1, Psi2) samples
 whose states are known, the collapse test on constructed density profiles, and the command line
 `python3 tools/granfric`."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """The cooling scene (examples/cooling) against the homogeneous-cooling theories of Luding et al.
 1998: dilute (fraction 0.05, N = 4096), after the paper's elastic equilibration, over the first
 ~4 collisions per particle in 2D and ~8 in 3D (T_tr falls to ~0.4), averaged over 64 seeds.

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Driven 2D mean-field theory of Herbst et al. 2005, models A-E (granfric.meanfield): limits,
 small-mu scaling (doc/conventions.rst, correction 7), steady states, relaxation rates, the
 coefficients' defining averages by quadrature, and <dE> per collision against Monte Carlo through

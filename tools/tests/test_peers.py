@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """bench/peers: the side-by-side benchmark against a stand-alone event-driven code.
 
 The peer's source is not part of GRANFRIC, so these tests check the driver with a stand-in: a

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """bench/speed_accuracy (speed against accuracy): the soft-sphere mapping and a smoke run of the benchmark.
 
 The mapping (bench/speed_accuracy.py, soft_params; doc/choosing_a_method.rst) claims, for

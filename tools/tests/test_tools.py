@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Smoke tests of the Python tools: collision-law demonstration, LAMMPS log reader."""
 import os
 

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Test helpers: random hard-sphere systems, and the core event loop run window by window.
 #ifndef GRANFRIC_TEST_ED_FIXTURE_H
 #define GRANFRIC_TEST_ED_FIXTURE_H

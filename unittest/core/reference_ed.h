@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Test-only brute-force O(N^2) event-driven reference: at every step it scans all pairs and
 // their periodic images for the globally earliest collision. It shares only the collision law
 // and the pair contact-time formula with the core; its bookkeeping (no cells, no queue, no

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Core tests of the collision laws: conservation laws, restitution relations, energy closed form,
 // Coulomb limit, limits between the laws (rough = walton mu->inf, jz = walton for kappa_s = kappa_d),
 // Risso eqs 6 (corrected) and 7, and the wall limit. Random collisions, 2D and 3D.

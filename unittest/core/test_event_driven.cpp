@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Core tests of the event-driven loop: whole trajectories equal to the brute-force reference
 // for every law, 2D and 3D, N = 2..500 and windows from 0.01 to 10 mean free times; conservation;
 // no overlaps; gravity; the TC model against inelastic collapse and the event cap without it.

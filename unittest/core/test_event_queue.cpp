@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // The event queue against an ordered set: the same (time, index) order under random updates,
 // ties, infinite times, far-future events and time shifts.
 #include "core/event_queue.h"

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Core tests of neighbour lists (EDOptions::LISTS): trajectories equal to the brute-force
 // reference, as with cells, for every law in 2D and 3D, with kicks, walls and a list overflow;
 // the automatic choice. (Changes between windows: test_event_driven.cpp.)

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC LAMMPS-side tests: helpers to drive LAMMPS through its C++ API with the plugin loaded
 // (in the style of LAMMPS's unittest/testing/core.h).
 #ifndef GRANFRIC_TEST_LAMMPS_FIXTURE_H

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // main() of the LAMMPS-side GoogleTest programs: LAMMPS instances need MPI.
 #include <gtest/gtest.h>
 #include <mpi.h>

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Every invalid input of the GRANFRIC styles ends the run with an ERROR line that names the
 // offending keyword or value: one test per entry of error_catalogue.yaml. An entry gives a
 // setup (a named block of commands that must run), input lines of which every one but the last

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // fix hardsphere/ed through LAMMPS: whole trajectories equal to the brute-force reference
 // (2D and 3D, every law, short and long steps), restart continuity, the TC model against the
 // event cap in a collapsing system, and every invalid keyword or combination.

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // What fix hardsphere/ed and its companions refuse at the start of a run (timestep, overlaps,
 // walls, box, kick rates), the consistency of its collision counts with walls, and run_style
 // respa giving the verlet trajectory.

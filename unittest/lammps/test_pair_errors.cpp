@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Every invalid input of the hardsphere/* pair styles gets an error that names what was wrong
 // and what is allowed; kappa_d > kappa_s is accepted with a warning.
 #include "lammps_fixture.h"

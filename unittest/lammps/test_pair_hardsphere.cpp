@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Regression tests of the hardsphere/* pair styles, in the shape of LAMMPS's
 // unittest/force-styles: one YAML file per case holds the input and the reference values; the
 // generic runner checks them after run 0, after write_data + read_data and after write_restart +

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Exact hard-sphere dynamics across MPI ranks (fix hardsphere/ed parallel domain).
 
 The scenes of in.scenes start from one initial state (written on one rank: velocity create

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # Run unittest/scripts/in.ranks on 1, 2 and 4 MPI ranks and require identical final states.
 #   compare_ranks.sh <tools/lmp> <workdir>
 set -euo pipefail

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC core as a C ABI for the Python tools (ctypes): the same collision law the LAMMPS
 // styles use. Vectors are double[3]; see core/collision.h for conventions.
 #include "core/collision.h"

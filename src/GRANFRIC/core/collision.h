@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: instantaneous collision laws for rough hard spheres and discs.
 //
 // Conventions (doc/conventions.rst): n points from body 2 to body 1, the contact-point

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: Monte Carlo mean energy change per collision (see energy_loss.h).
 #include "energy_loss.h"
 

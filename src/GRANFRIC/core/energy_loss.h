@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: Monte Carlo mean energy change per collision over a Maxwellian,
 // through the same collision law the simulations use (Risso et al. 2005, Sec. II; the
 // doc/conventions.rst, correction 9): equal particles, velocities Gaussian at T0 per

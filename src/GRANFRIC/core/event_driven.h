@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: the exact event-driven loop for one time window.
 //
 // Particles fly freely (uniform gravity allowed) and collide instantaneously through a

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: the queue of particle event times (one pending event per particle).
 //
 // A calendar queue (cf. G. Paul, J. Comput. Phys. 221, 615 (2007)): time is cut into buckets

@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: allocator for the large per-particle arrays. Blocks of 4 MiB and more
 // are aligned to 2 MiB and, on Linux, marked for transparent huge pages: with millions of
 // particles the event loop touches records scattered over hundreds of MiB, and with 4 KiB pages

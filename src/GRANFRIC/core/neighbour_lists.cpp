@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: neighbour lists, the second way of finding collision candidates (see
 // event_driven.h). In a dense gas most particles of the 3^d cells around a particle are too far
 // to be its next partner; a list of the particles within sigma plus a skin holds about half as

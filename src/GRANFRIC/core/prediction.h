@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: event prediction under free flight with uniform gravity.
 // Uniform gravity cancels in the relative motion of two particles, so pair contact times solve
 // |r + v tau| = sigma; a particle against a fixed plane (or cell boundary) moves on a parabola.

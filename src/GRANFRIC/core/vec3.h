@@ -1,3 +1,5 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: a minimal 3-vector (no LAMMPS types).
 #ifndef GRANFRIC_CORE_VEC3_H
 #define GRANFRIC_CORE_VEC3_H
