@@ -60,13 +60,7 @@ ComputeHardsphereCollisions::~ComputeHardsphereCollisions()
 
 void ComputeHardsphereCollisions::init()
 {
-  auto *f = modify->get_fix_by_id(fixid);
-  if (!f)
-    error->all(FLERR, "Compute hardsphere/collisions: fix ID {} does not exist", fixid);
-  fix = dynamic_cast<FixHardsphereED *>(f);
-  if (!fix)
-    error->all(FLERR, "Compute hardsphere/collisions: fix {} is of style {}, not hardsphere/ed",
-               fixid, f->style);
+  fix = FixHardsphereED::lookup(lmp, fixid, "Compute hardsphere/collisions");
   fix->request_gamma_bins(nbins);
   // the first window of a run starts with the run
   seen = fix->cumulative();

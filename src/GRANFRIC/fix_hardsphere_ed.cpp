@@ -141,6 +141,15 @@ void FixHardsphereED::require(LAMMPS *lmp, const char *style, const char *id, co
   lmp->error->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
 }
 
+FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, const char *who)
+{
+  auto *f = lmp->modify->get_fix_by_id(id);
+  if (!f) lmp->error->all(FLERR, "{}: fix ID {} does not exist", who, id);
+  auto *ed = dynamic_cast<FixHardsphereED *>(f);
+  if (!ed) lmp->error->all(FLERR, "{}: fix {} is of style {}, not hardsphere/ed", who, id, f->style);
+  return ed;
+}
+
 int FixHardsphereED::setmask()
 {
   return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA;
@@ -668,14 +677,16 @@ void FixHardsphereED::window_gather(double t0, double dt)
   }
 
   // kicks of fix hardsphere/kick at their exact times inside the window
-  if (!kicks.empty()) {
+  if (!kicks.empty() || want_rows) {
     cmask.resize(ntotal);
     for (int s = 0; s < ntotal; s++) cmask[s] = (int) field(order[s], 14);
-    schedule_kicks(t0, dt, otags, cmask, false);
   }
+  if (!kicks.empty()) schedule_kicks(t0, dt, otags, cmask, false);
 
   ed.set_accounting(granfric::EDAccounting());
   ed.record_events(nullptr);
+  clog.clear();
+  ed.record_collisions(want_rows ? &clog : nullptr);
   try {
     last = ed.advance_to(dt);
   } catch (granfric::EventCapError &e) {
@@ -701,6 +712,9 @@ void FixHardsphereED::window_gather(double t0, double dt)
   } catch (std::exception &e) {
     core_failed(e, true);
   }
+  // (every rank ran every collision: rank 0 keeps the rows)
+  if (comm->me != 0) clog.clear();
+  keep_rows(t0, otags, cmask);
 
   // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the
   // periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
@@ -750,6 +764,23 @@ void FixHardsphereED::window_gather(double t0, double dt)
 
 // the window's statistics (identical on every rank) into the running totals; the collision
 // counts include wall collisions, as the core's sliding, TC-elastic and energy-creating counts do
+// the rows of the core's collision records of the window that began at t0, with the IDs and
+// masks of its particles (by core index)
+template <class TAGS>
+void FixHardsphereED::keep_rows(double t0, const TAGS &tags, const std::vector<int> &masks)
+{
+  ed.record_collisions(nullptr);
+  rows.clear();
+  for (const auto &c : clog) {
+    const bool wall = c.j < 0;
+    rows.push_back({t0 + c.t, {(tagint) tags[c.i], wall ? 0 : (tagint) tags[c.j]},
+                    {masks[c.i], wall ? 0 : masks[c.j]}, wall ? -c.j : 0, c});
+  }
+}
+
+// (the domain windows' instance)
+template void FixHardsphereED::keep_rows(double, const std::vector<long> &, const std::vector<int> &);
+
 void FixHardsphereED::finish_window(double dt)
 {
   totals[COMM] += totals[STEP_COMM];

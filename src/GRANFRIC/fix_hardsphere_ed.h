@@ -50,6 +50,8 @@ class FixHardsphereED : public Fix {
   FixHardsphereED(class LAMMPS *, int, char **);
   // error unless a fix hardsphere/ed exists: the styles it calls from its window (kicks, walls)
   static void require(class LAMMPS *lmp, const char *style, const char *id, const char *what);
+  // the fix hardsphere/ed with ID id, or an error in the name of who (a command and its style)
+  static FixHardsphereED *lookup(class LAMMPS *lmp, const std::string &id, const char *who);
   ~FixHardsphereED() override;
   int setmask() override;
   void init() override;
@@ -77,6 +79,19 @@ class FixHardsphereED : public Fix {
   double cumulative_time() const { return cum_time; }
   // a compute asks for impact-angle histograms with this many bins (one size per fix)
   void request_gamma_bins(int nbins);
+  // one collision of the last step, for per-collision output: absolute time, the atoms' IDs and
+  // group masks (id[1] = 0 and mask[1] = 0 for a wall), the wall (0: a pair; k: the k-th wall
+  // fix), what the core reports. Each collision is kept by one rank only.
+  struct CollisionRow {
+    double t;
+    tagint id[2];
+    int mask[2];
+    int wall;
+    granfric::EDCollisionRecord c;
+  };
+  // a compute asks for the rows of every step from now on
+  void request_collision_rows() { want_rows = true; }
+  const std::vector<CollisionRow> &collision_rows() const { return rows; }
 
  protected:
   double gravity[3];
@@ -196,6 +211,12 @@ class FixHardsphereED : public Fix {
   std::vector<uint8_t> dom_watch;               // slots whose events are recorded
   int dom_stamp = 0;
   std::vector<tagint> kick_tags;
+  // per-collision rows (request_collision_rows): the core's records of the window, and the rows
+  bool want_rows = false;
+  std::vector<granfric::EDCollisionRecord> clog;
+  std::vector<CollisionRow> rows;
+  template <class TAGS>
+  void keep_rows(double t0, const TAGS &tags, const std::vector<int> &masks);
 };
 
 }    // namespace LAMMPS_NS

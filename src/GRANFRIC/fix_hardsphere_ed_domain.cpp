@@ -526,6 +526,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     schedule_kicks(t0, dt, kick_tags, gmask, true);
   }
 
+  clog.clear();
+  ed.record_collisions(want_rows ? &clog : nullptr);
   int fail = 0;
   try {
     last = ed.advance_to(dt);
@@ -533,6 +535,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     fail = 1;    // e.g. the event cap: the gathered redo tells whether it is real
   }
   ed.record_events(nullptr);
+  ed.record_collisions(nullptr);
 
   // ------------------------------------------------ guard: no owned atom went too far
   // An owned atom j that went further than D (path p > D) is harmless if it stayed out of
@@ -777,6 +780,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   queue_valid = false;
   // the core is kept for the next window (it then starts at this window's end)
   dom_valid = true;
+  keep_rows(t0, gtag, gmask);    // (the collisions this rank booked)
   dom_dt = dt;
   sowned_prev.assign(sowned.begin(), sowned.end());
   return true;

@@ -8,6 +8,7 @@
 #include "version.h"
 
 #include "compute_hardsphere_collisions.h"
+#include "compute_hardsphere_collisions_local.h"
 #include "compute_hardsphere_convection.h"
 #include "compute_hardsphere_temp.h"
 #include "fix_hardsphere_ed.h"
@@ -78,4 +79,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   add(reg, lmp, handle, "compute", "hardsphere/collisions",
       "GRANFRIC collision statistics of fix hardsphere/ed",
       (void *) &style_creator<ComputeHardsphereCollisions>, false);
+  add(reg, lmp, handle, "compute", "hardsphere/collisions/local",
+      "GRANFRIC one row per collision of the last step of fix hardsphere/ed",
+      (void *) &style_creator<ComputeHardsphereCollisionsLocal>, false);
 }

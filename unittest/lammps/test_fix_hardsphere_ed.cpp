@@ -54,6 +54,18 @@ std::string gas(int dim, int n, double side, unsigned seed)
 }
 
 // the LAMMPS system as a brute-force Reference (positions unwrapped with image flags)
+// a 2D gas as gas() makes it, with the y boundary yb ("f": walls at both box faces, "m": a
+// floor only) and every atom at least 0.6 from y = 0 and y = side
+std::string walled_gas(int n, double side, unsigned seed, const std::string &yb)
+{
+  std::string s = gas(2, n, side, seed);
+  s.replace(s.find("boundary p p p"), 14, "boundary p " + yb + " p");
+  s.replace(s.find("NULL overlap"), 4, "inner");
+  s.replace(s.find("create_atoms"), 0, "region inner block EDGE EDGE 0.6 " +
+            std::to_string(side - 0.6) + " EDGE EDGE\n");
+  return s;
+}
+
 Reference reference_of(LAMMPS_NS::LAMMPS *lmp)
 {
   Reference ref;
@@ -235,6 +247,66 @@ TEST(FixHardsphereED, PressureFollowsTheEquationOfState)
     EXPECT_NEAR(z / z_eos, 1.0, 0.01) << c.dim << "D, fraction " << p << ": Z = " << z
                                       << ", equation of state " << z_eos << " (N = " << n << ")";
   }
+}
+
+// compute hardsphere/collisions/local: one row per collision of the last step (pairs and walls),
+// as many as the fix counts, the energy changes add up to the fix's dissipation; a head-on
+// collision of two equal spheres has the impact angle pi, no tangential speed, the normal impulse
+// m_n (1 + r) |g_n| and the energy change -m_n (1 - r^2) g_n^2 / 2; the group selects rows.
+TEST(ComputeCollisionsLocal, RowsAreTheStepsCollisions)
+{
+  auto lmp = make_lammps();
+  const std::string s = walled_gas(120, 20.0, 33, "f");
+  run(lmp.get(), s + "pair_style hardsphere/walton inertia disc\npair_coeff * * 0.8 0.3 0.4\n"
+                     "fix ed all hardsphere/ed gravity 0.0 -0.3 0.0 tc 0.01\n"
+                     "fix floor all hardsphere/wall ylo EDGE\nfix top all hardsphere/wall yhi EDGE\n"
+                     "compute cl all hardsphere/collisions/local ed\ngroup half id <= 60\n"
+                     "compute ch half hardsphere/collisions/local ed\ntimestep 0.2\nthermo 0\n"
+                     "run 0 post no");
+  auto *ed = lmp->modify->get_fix_by_id("ed");
+  auto *cl = lmp->modify->get_compute_by_id("cl"), *ch = lmp->modify->get_compute_by_id("ch");
+  long walls = 0;
+  for (int step = 0; step < 30; step++) {
+    const double lost0 = ed->compute_vector(2);
+    run(lmp.get(), "run 1 post no");
+    cl->compute_local();
+    ch->compute_local();
+    ASSERT_EQ(cl->size_local_rows, (int) ed->compute_vector(0)) << "step " << step;
+    double dE = 0.0;
+    int half = 0;
+    for (int r = 0; r < cl->size_local_rows; r++) {
+      const double *a = cl->array_local[r];
+      dE += a[9];
+      walls += a[3] > 0;
+      EXPECT_EQ(a[3] > 0, a[2] == 0.0) << "a wall row has no second atom";
+      EXPECT_GT(a[4], 0.0) << "approaching";
+      EXPECT_TRUE(a[6] > M_PI / 2 && a[6] <= M_PI);
+      half += a[1] <= 60 || (a[2] > 0 && a[2] <= 60);
+    }
+    EXPECT_NEAR(dE, -(ed->compute_vector(2) - lost0), 1e-9 * (1.0 + std::fabs(dE)));
+    EXPECT_EQ(ch->size_local_rows, half) << "rows with an atom of the group";
+  }
+  EXPECT_GT(walls, 10);
+  lmp.reset();    // (one LAMMPS instance at a time: the plugin is registered with one only)
+
+  auto two = make_lammps();
+  run(two.get(), "units lj\ndimension 3\natom_style sphere\nboundary p p p\ncomm_modify vel yes\n"
+                 "region box block 0 10 0 10 0 10\ncreate_box 1 box\ncreate_atoms 1 single 2 5 5\n"
+                 "create_atoms 1 single 6 5 5\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
+                 "velocity all set 0 0 0\nset atom 1 vx 1.5\nset atom 2 vx -0.5\n"
+                 "pair_style hardsphere/rough\npair_coeff * * 0.7 0.4\nfix ed all hardsphere/ed\n"
+                 "compute cl all hardsphere/collisions/local ed\ntimestep 2.0\nthermo 0\nrun 1 post no");
+  auto *c2 = two->modify->get_compute_by_id("cl");
+  c2->compute_local();
+  ASSERT_EQ(c2->size_local_rows, 1);
+  const double *a = c2->array_local[0];
+  EXPECT_NEAR(a[0], 1.5, 1e-12) << "gap 3 closed at relative speed 2";
+  EXPECT_EQ(a[1] + a[2], 3.0);
+  EXPECT_NEAR(a[4], 2.0, 1e-12);
+  EXPECT_NEAR(a[5], 0.0, 1e-12);
+  EXPECT_NEAR(a[6], M_PI, 1e-7);
+  EXPECT_NEAR(a[8], 0.5 * 1.7 * 2.0, 1e-12);
+  EXPECT_NEAR(a[9], -0.5 * 0.5 * (1 - 0.49) * 4.0, 1e-12);
 }
 
 TEST(FixHardsphereED, RestartContinuesTheTrajectory)
@@ -687,10 +759,7 @@ TEST(FixHardsphereWall, EqualsReferenceAndHolds)
 TEST(FixHardsphereWall, FloorCarriesTheWeight)
 {
   auto lmp = make_lammps();
-  std::string s = gas(2, 120, 20.0, 91);
-  s.replace(s.find("boundary p p p"), 14, "boundary p m p");
-  s.replace(s.find("NULL overlap"), 4, "inner");
-  s.replace(s.find("create_atoms"), 0, "region inner block EDGE EDGE 0.6 19.4 EDGE EDGE\n");
+  const std::string s = walled_gas(120, 20.0, 91, "m");
   const double g = 0.3, dt = 0.5;
   // (perfectly rough and elastic: the floor exchanges spin with the gas, not energy)
   run(lmp.get(), s + "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 1.0\n"
@@ -727,10 +796,7 @@ TEST(FixHardsphereWall, FloorCarriesTheWeight)
 // the floor's totals (collisions, momentum and energy exchanged, time) continue across a restart
 TEST(FixHardsphereWall, TotalsKeptInRestartFiles)
 {
-  std::string s = gas(2, 80, 20.0, 17);
-  s.replace(s.find("boundary p p p"), 14, "boundary p m p");
-  s.replace(s.find("NULL overlap"), 4, "inner");
-  s.replace(s.find("create_atoms"), 0, "region inner block EDGE EDGE 0.6 19.4 EDGE EDGE\n");
+  const std::string s = walled_gas(80, 20.0, 17, "m");
   const std::string fixes = "fix ed all hardsphere/ed gravity 0.0 -0.5 0.0 tc 0.05\n"
                             "fix floor all hardsphere/wall ylo 0.0 coeffs 0.8 -1.0\n"
                             "timestep 0.2\nthermo 0\n";

@@ -995,6 +995,8 @@ void EventDriven::collide_wall(int i)
     stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
     add_virial(stats.virial, h.a * n, dP);
     const int k = s.wall;
+    if (collision_log)
+      collision_log->push_back({t, ext[i], -1 - k, c.gn, c.gt, c.cos_gamma, std::fabs(dP[w.dim]), c.dE, c.sliding});
     stats.wall_hits[k]++;
     for (int d = 0; d < 3; d++) stats.wall_impulse[3 * k + d] -= dP[d];
     stats.wall_work[k] += dE;
@@ -1080,6 +1082,8 @@ void EventDriven::collide_pair(int i)
     if (c.energy_created) stats.energy_created++;
     if (tc_elastic) stats.tc_elastic++;
     add_virial(stats.virial, r, c.dP);
+    if (collision_log)
+      collision_log->push_back({t, ext[i], ext[j], c.gn, c.gt, c.cos_gamma, std::fabs(dot(c.dP, n)), c.dE, c.sliding});
     if (opt.gamma_bins > 0) {
       const int nb = opt.gamma_bins;
       int k = (int) ((c.gamma() - 0.5 * M_PI) / (0.5 * M_PI) * nb);

@@ -143,6 +143,17 @@ struct EDEvent {
   Vec3 vi, wi, vj, wj;
 };
 
+// One booked collision, for per-collision output: window time, the particles (external indices;
+// j = -1 - k for wall k) and what the collision law reports of it
+struct EDCollisionRecord {
+  double t;
+  int i, j;
+  double gn, gt, cos_gamma;    // before: g.n (< 0 approaching), |g_t|, cos of the impact angle
+  double jn;                   // normal impulse |dP . n|
+  double dE;                   // kinetic energy change (for a moving wall: in the lab frame)
+  bool sliding;
+};
+
 // Accounting of a window that covers part of a larger system (the owned atoms of an MPI rank
 // plus copies of its neighbours' atoms): key = a global identity per particle (external index;
 // also seeds the thermal walls' random numbers), counted = the particles whose events this
@@ -250,6 +261,8 @@ class EventDriven {
     history = h;
     record_only = only;
   }
+  // optional per-window list of the booked collisions (pairs and walls) into *log
+  void record_collisions(std::vector<EDCollisionRecord> *log) { collision_log = log; }
   // Fast particles, for a bound on how far particles travel in a window (the guard of domain
   // windows): after track_fast(s2), every velocity change (collision, wall, kick) that leaves
   // a particle with a squared speed of s2 or more lists it with that squared speed, in the
@@ -397,6 +410,7 @@ class EventDriven {
   long crossings_since_reorder = 0;
   double clock = 0.0;
   std::vector<EDEvent> *history = nullptr;
+  std::vector<EDCollisionRecord> *collision_log = nullptr;
   const uint8_t *record_only = nullptr;
   double fast_s2 = INF;                  // track_fast(): the threshold, and who reached it
   bool fast_on = false;
