@@ -13,6 +13,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "group.h"
 #include "pair_hardsphere.h"
 #include "update.h"
 
@@ -52,6 +53,9 @@ ComputeHardsphereTemp::ComputeHardsphereTemp(LAMMPS *lmp, int narg, char **arg) 
   }
   if (!atom->radius_flag || !atom->rmass_flag || !atom->omega_flag)
     error->all(FLERR, "Compute hardsphere/temp requires atom_style sphere (radius, mass, omega)");
+  scalar_flag = 1;
+  extscalar = 0;
+  tempflag = 1;    // (a temperature LAMMPS's commands accept)
   vector_flag = 1;
   size_vector = 5;
   extvector = -1;
@@ -80,9 +84,24 @@ void ComputeHardsphereTemp::init()
   qused = pair->shape_factor();
 }
 
-void ComputeHardsphereTemp::compute_vector()
+// degrees of freedom of the scalar: d per atom of the group, as in the papers' T_tr (no
+// correction for the total momentum, unlike compute temp); counted at the start of each run
+void ComputeHardsphereTemp::setup()
 {
-  invoked_vector = update->ntimestep;
+  dof = domain->dimension * (double) group->count(igroup);
+}
+
+double ComputeHardsphereTemp::compute_scalar()
+{
+  invoked_scalar = update->ntimestep;
+  double all[3];
+  sums(all);
+  scalar = dof > 0.0 ? all[0] * force->mvv2e / (dof * force->boltz) : 0.0;
+  return scalar;
+}
+
+void ComputeHardsphereTemp::sums(double *all)
+{
   double **v = atom->v, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *mask = atom->mask;
@@ -96,11 +115,18 @@ void ComputeHardsphereTemp::compute_vector()
     local[1] += qused * rmass[i] * radius[i] * radius[i] * w2;
     local[2] += 1.0;
   }
-  double all[3];
   MPI_Allreduce(local, all, 3, MPI_DOUBLE, MPI_SUM, world);
+}
+
+void ComputeHardsphereTemp::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+  double all[3];
+  sums(all);
   const double etr = 0.5 * all[0] * force->mvv2e, erot = 0.5 * all[1] * force->mvv2e;
   const double n = all[2];
   const double kb = force->boltz;
+  const bool dim2 = domain->dimension == 2;
   const double dtr = dim2 ? 2.0 : 3.0, drot = dim2 ? 1.0 : 3.0;
   vector[0] = n > 0 ? 2.0 * etr / (dtr * n * kb) : 0.0;
   vector[1] = n > 0 ? 2.0 * erot / (drot * n * kb) : 0.0;

@@ -3,6 +3,8 @@
    Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: compute ID group hardsphere/temp [inertia sphere|disc|<q>]
    global vector: T_tr, T_rot, R = T_rot/T_tr, E_tr, E_rot
+   global scalar: T_tr, with dof = dim N: a temperature for thermo_modify temp, velocity temp
+   and compute pressure
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_TEMP_H
@@ -17,11 +19,14 @@ class ComputeHardsphereTemp : public Compute {
   ComputeHardsphereTemp(class LAMMPS *, int, char **);
   ~ComputeHardsphereTemp() override;
   void init() override;
+  void setup() override;
   void compute_vector() override;
+  double compute_scalar() override;
 
  private:
   double qshape;      // I/(m a^2); < 0: take it from the hardsphere pair style
   double qused;
+  void sums(double *all);    // sum m v^2, sum I w^2, atoms: over the group and all ranks
 };
 
 }    // namespace LAMMPS_NS

@@ -973,6 +973,41 @@ TEST_F(FixErrors, Computes)
   EXPECT_LMP_ERROR(lmp.get(), "run 0", "computes asked for 10 and 20 impact-angle bins");
 }
 
+// The scalar of compute hardsphere/temp is the translational temperature T_tr with d N degrees
+// of freedom: LAMMPS's temperature commands take it (thermo_modify temp, velocity scale,
+// compute pressure, whose kinetic part is then sum m v^2 / (d V) exactly)
+TEST(ComputeTemp, ScalarIsATemperatureForLammps)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    auto lmp = make_lammps();
+    run(lmp.get(), gas(dim, dim == 2 ? 150 : 120, dim == 2 ? 22.0 : 9.0, 5) +
+                       "pair_style hardsphere/rough" + (dim == 2 ? " inertia disc" : "") +
+                       "\npair_coeff * * 0.9 0.2\nfix ed all hardsphere/ed\ncompute T all hardsphere/temp\n"
+                       "thermo_modify temp T\nvelocity all scale 2.5 temp T\ncompute P all pressure T\n"
+                       "timestep 0.1\nthermo 0\nrun 3 post no");
+    auto *T = lmp->modify->get_compute_by_id("T");
+    const double n = (double) lmp->atom->natoms;
+    EXPECT_EQ(T->dof, dim * n);
+    double mv2 = 0.0;
+    for (int i = 0; i < lmp->atom->nlocal; i++) {
+      const double *v = lmp->atom->v[i];
+      mv2 += lmp->atom->rmass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    }
+    EXPECT_NEAR(T->compute_scalar(), mv2 / (dim * n), 1e-12 * mv2);
+    T->compute_vector();
+    EXPECT_NEAR(T->compute_scalar(), T->vector[0], 1e-12) << "the scalar is T_tr";
+    run(lmp.get(), "velocity all scale 2.5 temp T");
+    EXPECT_NEAR(T->compute_scalar(), 2.5, 1e-12);
+    auto *fix = lmp->modify->get_fix_by_id("ed");
+    auto *P = lmp->modify->get_compute_by_id("P");
+    run(lmp.get(), "run 1 post no");
+    const double vol = lmp->domain->xprd * lmp->domain->yprd * (dim == 3 ? lmp->domain->zprd : 1.0);
+    mv2 = T->compute_scalar() * dim * n;
+    const double tr = fix->virial[0] + fix->virial[1] + (dim == 3 ? fix->virial[2] : 0.0);
+    EXPECT_NEAR(P->compute_scalar(), (mv2 + tr) / (dim * vol), 1e-10 * (mv2 + std::fabs(tr)) / vol);
+  }
+}
+
 TEST(ComputeTemp, PairStyleWithoutShapeFactorNeedsInertia)
 {
   auto lmp = make_lammps();
