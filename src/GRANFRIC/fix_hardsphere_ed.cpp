@@ -96,6 +96,7 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
   time_integrate = 1;
   // the collision virial of each step goes into LAMMPS's pressure (fix_modify virial no: not)
   virial_global_flag = 1;
+  virial_peratom_flag = 1;
   thermo_virial = 1;
   vector_flag = 1;
   size_vector = NVECTOR;
@@ -105,10 +106,12 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
   restart_peratom = 1;
   for (double &t : totals) t = 0.0;
 
-  // the last collision times matter only to the TC model: without it they are not kept
+  // per-atom arrays (LAMMPS takes callbacks only from a fix's constructor): the last collision
+  // times, kept only for the TC model, and the tallies, allocated when first asked for
+  atom->add_callback(Atom::GROW);
   if (tc > 0.0) {
     FixHardsphereED::grow_arrays(atom->nmax);
-    atom->add_callback(Atom::GROW);
+    maxexchange = 1;
     atom->add_callback(Atom::RESTART);
   }
 }
@@ -127,11 +130,10 @@ int FixHardsphereED::choice(const char *keyword, const std::string &value,
 FixHardsphereED::~FixHardsphereED()
 {
   if (copymode) return;
-  if (tlast) {
-    atom->delete_callback(id, Atom::GROW);
-    atom->delete_callback(id, Atom::RESTART);
-  }
+  if (tlast) atom->delete_callback(id, Atom::RESTART);
+  atom->delete_callback(id, Atom::GROW);
   memory->destroy(tlast);
+  memory->destroy(atally);
 }
 
 void FixHardsphereED::require(LAMMPS *lmp, const char *style, const char *id, const char *what)
@@ -152,7 +154,28 @@ FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, con
 
 int FixHardsphereED::setmask()
 {
-  return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA;
+  return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA | POST_FORCE;
+}
+
+void FixHardsphereED::request_atom_tallies()
+{
+  if (atally) return;
+  memory->create(atally, atom->nmax, NTALLY, "hardsphere/ed:atally");
+  atally_n = 0;
+  grow_arrays(atom->nmax);
+  maxexchange = (tlast ? 1 : 0) + NTALLY;
+}
+
+// After LAMMPS moved and sorted the atoms (their tallies went with them): the step's virial,
+// global and per atom (the tallies hold each atom's share)
+void FixHardsphereED::post_force(int vflag)
+{
+  v_init(vflag);
+  for (int k = 0; k < 6; k++) virial[k] = wstep[k];
+  if (!vflag_atom || !atally) return;
+  const double scale = force->mvv2e / update->dt;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = 0; k < 6; k++) vatom[i][k] = atally[i][T_VIRIAL + k] * scale;
 }
 
 void FixHardsphereED::initial_integrate_respa(int vflag, int ilevel, int)
@@ -222,8 +245,11 @@ void FixHardsphereED::init()
                    "whole window (exact, no parallel speedup)", comm->nprocs);
 }
 
-void FixHardsphereED::setup(int)
+void FixHardsphereED::setup(int vflag)
 {
+  // no collision before the first step: the virial LAMMPS reads at the run's start is zero
+  for (double &w : wstep) w = 0.0;
+  post_force(vflag);
   const double *radius = atom->radius;
   const tagint point = first_atom([&](int i) { return !(radius[i] > 0.0); });
   if (point != NOATOM)
@@ -526,8 +552,11 @@ double FixHardsphereED::window_start_time() const
    number of ranks or on atom sorting), run the core, take back the owned atoms
 ------------------------------------------------------------------------- */
 
-void FixHardsphereED::initial_integrate(int)
+void FixHardsphereED::initial_integrate(int vflag)
 {
+  v_init(vflag);    // (vflag_atom: LAMMPS needs per-atom virials at the end of this step)
+  if (vflag_atom) request_atom_tallies();
+  ed.tally_particles(atally != nullptr);
   const double dt = update->dt;
   const double t0 = window_start_time();
   totals[STEP_CONFLICTS] = totals[STEP_COMM] = totals[STEP_PREDICTED] = 0.0;
@@ -748,6 +777,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
       w[d] = y;
     }
     if (i < 0) return;
+    if (atally) store_tally(i, s, t0);
     shift_image(image[i], dimg);
     memcpy(x[i], w, 3 * sizeof(double));
     memcpy(v[i], w + 3, 3 * sizeof(double));
@@ -781,6 +811,20 @@ void FixHardsphereED::keep_rows(double t0, const TAGS &tags, const std::vector<i
 // (the domain windows' instance)
 template void FixHardsphereED::keep_rows(double, const std::vector<long> &, const std::vector<int> &);
 
+// owned atom i is core particle s of the window that began at t0: its tallies of the step
+void FixHardsphereED::store_tally(int i, int s, double t0)
+{
+  const auto &p = ed.particle_tally(s);
+  double *a = atally[i];
+  for (int k = 0; k < 6; k++) a[T_VIRIAL + k] = p.virial[k];
+  a[T_COLL] = p.collisions;
+  a[T_WALL] = p.wall_collisions;
+  a[T_DETR] = p.dE_tr * force->mvv2e;
+  a[T_DEROT] = p.dE_rot * force->mvv2e;
+  a[T_DEWALL] = p.dE_wall * force->mvv2e;
+  if (p.t_last > -INF) a[T_LAST] = t0 + p.t_last;
+}
+
 void FixHardsphereED::finish_window(double dt)
 {
   totals[COMM] += totals[STEP_COMM];
@@ -801,7 +845,7 @@ void FixHardsphereED::finish_window(double dt)
   // the step's collision virial, sum of r (x) dP over its collisions divided by its length: the
   // time average of the impulsive forces' virial over the window (last holds the whole system's
   // on every rank; compute pressure sums the ranks' shares, so rank 0 gives it all)
-  for (int k = 0; k < 6; k++) virial[k] = comm->me == 0 ? last.virial[k] * force->mvv2e / dt : 0.0;
+  for (int k = 0; k < 6; k++) wstep[k] = comm->me == 0 ? last.virial[k] * force->mvv2e / dt : 0.0;
   // each wall's share (the core's walls are in the order of the wall fixes)
   for (size_t k = 0; k < walls.size() && k < last.wall_hits.size(); k++)
     walls[k]->tally(last.wall_hits[k], &last.wall_impulse[3 * k], last.wall_work[k], dt);
@@ -817,7 +861,8 @@ double FixHardsphereED::compute_vector(int n)
 double FixHardsphereED::memory_usage()
 {
   auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
-  return (tlast ? (double) atom->nmax * sizeof(double) : 0.0) + (double) ed.memory_bytes() + bytes(sendbuf) +
+  return (tlast ? (double) atom->nmax * sizeof(double) : 0.0) +
+      (atally ? (double) atom->nmax * NTALLY * sizeof(double) : 0.0) + (double) ed.memory_bytes() + bytes(sendbuf) +
       bytes(recvbuf) + bytes(order) + bytes(otags) + bytes(offset) +
       bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
       bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags) + bytes(dom_slot) +
@@ -827,28 +872,44 @@ double FixHardsphereED::memory_usage()
       bytes(dom_pub);
 }
 
+// per-atom arrays: the last collision times of the TC model (tc > 0) and the tallies (when asked)
 void FixHardsphereED::grow_arrays(int nmax)
 {
-  memory->grow(tlast, nmax, "hardsphere/ed:tlast");
-  for (int i = tlast_n; i < nmax; i++) tlast[i] = -INF;    // (new atoms: no collision yet)
-  tlast_n = std::max(tlast_n, nmax);
+  if (tc > 0.0) {
+    memory->grow(tlast, nmax, "hardsphere/ed:tlast");
+    for (int i = tlast_n; i < nmax; i++) tlast[i] = -INF;    // (new atoms: no collision yet)
+    tlast_n = std::max(tlast_n, nmax);
+  }
+  if (atally) {
+    memory->grow(atally, nmax, NTALLY, "hardsphere/ed:atally");
+    for (int i = atally_n; i < nmax; i++)
+      for (int k = 0; k < NTALLY; k++) atally[i][k] = k == T_LAST ? -1.0 : 0.0;
+    atally_n = std::max(atally_n, nmax);
+  }
 }
 
 void FixHardsphereED::copy_arrays(int i, int j, int)
 {
-  tlast[j] = tlast[i];
+  if (tlast) tlast[j] = tlast[i];
+  if (atally) memcpy(atally[j], atally[i], NTALLY * sizeof(double));
 }
 
 int FixHardsphereED::pack_exchange(int i, double *buf)
 {
-  buf[0] = tlast[i];
-  return 1;
+  int m = 0;
+  if (tlast) buf[m++] = tlast[i];
+  if (atally)
+    for (int k = 0; k < NTALLY; k++) buf[m++] = atally[i][k];
+  return m;
 }
 
 int FixHardsphereED::unpack_exchange(int nlocal, double *buf)
 {
-  tlast[nlocal] = buf[0];
-  return 1;
+  int m = 0;
+  if (tlast) tlast[nlocal] = buf[m++];
+  if (atally)
+    for (int k = 0; k < NTALLY; k++) atally[nlocal][k] = buf[m++];
+  return m;
 }
 
 void FixHardsphereED::write_restart(FILE *fp)

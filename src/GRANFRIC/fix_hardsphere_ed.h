@@ -55,6 +55,7 @@ class FixHardsphereED : public Fix {
   ~FixHardsphereED() override;
   int setmask() override;
   void init() override;
+  void post_force(int) override;
   void setup(int) override;
   void initial_integrate(int) override;
   void initial_integrate_respa(int, int, int) override;
@@ -92,6 +93,14 @@ class FixHardsphereED : public Fix {
   // a compute asks for the rows of every step from now on
   void request_collision_rows() { want_rows = true; }
   const std::vector<CollisionRow> &collision_rows() const { return rows; }
+  // Per-atom tallies of the last step, kept with the atoms (they migrate with them), from the
+  // first step after they were asked for (a compute, or LAMMPS asking for per-atom virials):
+  // the atom's collision virial (6), its pair and wall collisions, its translational and
+  // rotational energy change in pair collisions, its energy change in wall collisions (energy
+  // units), and the time of its last collision since the tallies began (-1: none)
+  enum { T_VIRIAL = 0, T_COLL = 6, T_WALL, T_DETR, T_DEROT, T_DEWALL, T_LAST, NTALLY };
+  void request_atom_tallies();
+  const double *atom_tally(int i) const { return atally[i]; }
 
  protected:
   double gravity[3];
@@ -213,6 +222,10 @@ class FixHardsphereED : public Fix {
   std::vector<tagint> kick_tags;
   // per-collision rows (request_collision_rows): the core's records of the window, and the rows
   bool want_rows = false;
+  double **atally = nullptr;                    // per-atom tallies (NTALLY per atom), or null
+  int atally_n = 0;                             // rows of atally set (to zero when grown)
+  double wstep[6] = {0, 0, 0, 0, 0, 0};         // the step's global collision virial
+  void store_tally(int i, int s, double t0);
   std::vector<granfric::EDCollisionRecord> clog;
   std::vector<CollisionRow> rows;
   template <class TAGS>

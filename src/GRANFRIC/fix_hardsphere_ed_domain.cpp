@@ -745,6 +745,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       xa[3 * i + 1] = xe[1];
       xa[3 * i + 2] = xe[2];
       if (tlast) set_tlast(i, std::as_const(ed).particle(e).t_last, t0);
+      if (atally) store_tally(i, e, t0);
     }
   };
   if (dim == 2)

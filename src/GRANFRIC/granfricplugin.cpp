@@ -7,6 +7,7 @@
 #include "lammpsplugin.h"
 #include "version.h"
 
+#include "compute_hardsphere_atom.h"
 #include "compute_hardsphere_collisions.h"
 #include "compute_hardsphere_collisions_local.h"
 #include "compute_hardsphere_convection.h"
@@ -79,6 +80,9 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   add(reg, lmp, handle, "compute", "hardsphere/collisions",
       "GRANFRIC collision statistics of fix hardsphere/ed",
       (void *) &style_creator<ComputeHardsphereCollisions>, false);
+  add(reg, lmp, handle, "compute", "hardsphere/atom",
+      "GRANFRIC per-atom collisions and energy changes of the last step of fix hardsphere/ed",
+      (void *) &style_creator<ComputeHardsphereAtom>, false);
   add(reg, lmp, handle, "compute", "hardsphere/collisions/local",
       "GRANFRIC one row per collision of the last step of fix hardsphere/ed",
       (void *) &style_creator<ComputeHardsphereCollisionsLocal>, false);

@@ -66,6 +66,15 @@ std::string walled_gas(int n, double side, unsigned seed, const std::string &yb)
   return s;
 }
 
+// walled_gas() with the Walton law, gravity toward the floor, the TC model and walls at both faces
+std::string walled_bed(unsigned seed)
+{
+  return walled_gas(120, 20.0, seed, "f") +
+      "pair_style hardsphere/walton inertia disc\npair_coeff * * 0.8 0.3 0.4\n"
+      "fix ed all hardsphere/ed gravity 0.0 -0.3 0.0 tc 0.01\n"
+      "fix floor all hardsphere/wall ylo EDGE\nfix top all hardsphere/wall yhi EDGE\n";
+}
+
 Reference reference_of(LAMMPS_NS::LAMMPS *lmp)
 {
   Reference ref;
@@ -256,11 +265,7 @@ TEST(FixHardsphereED, PressureFollowsTheEquationOfState)
 TEST(ComputeCollisionsLocal, RowsAreTheStepsCollisions)
 {
   auto lmp = make_lammps();
-  const std::string s = walled_gas(120, 20.0, 33, "f");
-  run(lmp.get(), s + "pair_style hardsphere/walton inertia disc\npair_coeff * * 0.8 0.3 0.4\n"
-                     "fix ed all hardsphere/ed gravity 0.0 -0.3 0.0 tc 0.01\n"
-                     "fix floor all hardsphere/wall ylo EDGE\nfix top all hardsphere/wall yhi EDGE\n"
-                     "compute cl all hardsphere/collisions/local ed\ngroup half id <= 60\n"
+  run(lmp.get(), walled_bed(33) + "compute cl all hardsphere/collisions/local ed\ngroup half id <= 60\n"
                      "compute ch half hardsphere/collisions/local ed\ntimestep 0.2\nthermo 0\n"
                      "run 0 post no");
   auto *ed = lmp->modify->get_fix_by_id("ed");
@@ -307,6 +312,82 @@ TEST(ComputeCollisionsLocal, RowsAreTheStepsCollisions)
   EXPECT_NEAR(a[6], M_PI, 1e-7);
   EXPECT_NEAR(a[8], 0.5 * 1.7 * 2.0, 1e-12);
   EXPECT_NEAR(a[9], -0.5 * 0.5 * (1 - 0.49) * 4.0, 1e-12);
+}
+
+// Per-atom virials and compute hardsphere/atom, step by step with walls: compute stress/atom
+// (virial part) summed over the atoms is minus the fix's global collision virial (half of a pair
+// collision's to each partner, a wall's to its atom); the per-atom collisions add up to twice the
+// pair collisions plus the wall collisions, the energy changes to the step's dissipation; each
+// atom's values follow it when LAMMPS sorts the atoms (every step here: the same values by atom
+// ID as without sorting).
+TEST(FixHardsphereED, PerAtomVirialsAndTalliesAddUp)
+{
+  std::vector<std::vector<double>> by_id[2];    // per run: per step, stress xx and dE by atom ID
+  for (int sorted = 0; sorted < 2; sorted++) {
+    auto lmp = make_lammps();
+    run(lmp.get(), walled_bed(8) + (sorted ? "atom_modify sort 1 3.0\n" : "") +
+                       "compute s all stress/atom NULL virial\ncompute h all hardsphere/atom ed\n"
+                       "compute sr all reduce sum c_s[1] c_s[2] c_s[3] c_s[4] c_s[5] c_s[6]\n"
+                       "compute hr all reduce sum c_h[1] c_h[2] c_h[3] c_h[4] c_h[5]\n"
+                       "thermo_style custom step c_sr[1] c_hr[1]\nthermo 1\ntimestep 0.2\nrun 0 post no");
+    auto *fix = lmp->modify->get_fix_by_id("ed");
+    auto *sr = lmp->modify->get_compute_by_id("sr"), *hr = lmp->modify->get_compute_by_id("hr");
+    auto *s = lmp->modify->get_compute_by_id("s"), *h = lmp->modify->get_compute_by_id("h");
+    double trace = 0.0, walls = 0.0;
+    for (int step = 0; step < 20; step++) {
+      const double lost0 = fix->compute_vector(2);
+      run(lmp.get(), "run 1 post no");
+      sr->compute_vector();
+      hr->compute_vector();
+      const double scale = std::fabs(fix->virial[0]) + std::fabs(fix->virial[1]) + 1.0;
+      for (int k = 0; k < 6; k++)
+        EXPECT_NEAR(-sr->vector[k], fix->virial[k], 1e-10 * scale) << "step " << step << ", " << k;
+      const double nwall = fix->compute_vector(0) - hr->vector[0] / 2.0;    // (pairs count twice)
+      EXPECT_EQ(hr->vector[1], nwall) << "step " << step;
+      EXPECT_NEAR(hr->vector[2] + hr->vector[3] + hr->vector[4], -(fix->compute_vector(2) - lost0),
+                  1e-9 * (1.0 + std::fabs(lost0))) << "step " << step;
+      trace += fix->virial[0] + fix->virial[1];
+      walls += nwall;
+      s->compute_peratom();
+      h->compute_peratom();
+      std::vector<double> v(2 * lmp->atom->natoms + 2, 0.0);
+      for (int i = 0; i < lmp->atom->nlocal; i++) {
+        v[2 * lmp->atom->tag[i]] = s->array_atom[i][0];
+        v[2 * lmp->atom->tag[i] + 1] = h->array_atom[i][2];
+        const auto *u = lmp->update;
+        const double now = u->atime + (double) (u->ntimestep - u->atimestep) * u->dt;
+        if (h->array_atom[i][0] + h->array_atom[i][1] > 0) {    // (a collision in this step)
+          EXPECT_GE(h->array_atom[i][5], now - u->dt - 1e-12);
+          EXPECT_LE(h->array_atom[i][5], now + 1e-12);
+        }
+      }
+      by_id[sorted].push_back(v);
+    }
+    EXPECT_GT(trace, 0.0);
+    EXPECT_GT(walls, 0.0);
+  }
+  {
+    // 3D with LAMMPS's default atom sorting (at the run's setup): the tallies, asked for by a
+    // compute defined after the fix, are sorted with the atoms
+    auto lmp = make_lammps();
+    run(lmp.get(), "units lj\natom_style sphere\ncomm_modify vel yes\nlattice fcc 0.6\n"
+                   "region box block 0 6 0 6 0 6\ncreate_box 1 box\ncreate_atoms 1 box\n"
+                   "set type 1 diameter 1.0\nset type 1 mass 1.0\n"
+                   "velocity all create 1.0 4321 loop geom mom yes dist gaussian\n"
+                   "pair_style hardsphere/walton\npair_coeff * * 0.9 0.3 0.4\nfix ed all hardsphere/ed\n"
+                   "compute s all stress/atom NULL virial\ncompute h all hardsphere/atom ed\n"
+                   "compute sr all reduce sum c_s[1] c_h[1]\nthermo_style custom step c_sr[1] c_sr[2]\n"
+                   "timestep 0.05\nthermo 5\nrun 10 post no");
+    auto *sr = lmp->modify->get_compute_by_id("sr");
+    sr->compute_vector();
+    EXPECT_NEAR(-sr->vector[0], lmp->modify->get_fix_by_id("ed")->virial[0], 1e-9 * std::fabs(sr->vector[0]));
+    EXPECT_EQ(sr->vector[1], 2.0 * lmp->modify->get_fix_by_id("ed")->compute_vector(0));
+  }
+  ASSERT_EQ(by_id[0].size(), by_id[1].size());
+  for (size_t k = 0; k < by_id[0].size(); k++)
+    for (size_t e = 0; e < by_id[0][k].size(); e++)
+      EXPECT_NEAR(by_id[0][k][e], by_id[1][k][e], 1e-9 * (1.0 + std::fabs(by_id[0][k][e])))
+          << "step " << k << ", value " << e << ": per-atom values must follow the atoms";
 }
 
 TEST(FixHardsphereED, RestartContinuesTheTrajectory)

@@ -946,6 +946,22 @@ Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n,
   return c;
 }
 
+void EventDriven::tally(int i, const Vec3 &r, const Vec3 &dP, double t, double dE_tr, double dE_rot,
+                        bool wall)
+{
+  ParticleTally &p = PT[ext[i]];
+  add_virial(p.virial, r, dP);
+  if (wall) {
+    p.wall_collisions += 1.0;
+    p.dE_wall += dE_tr + dE_rot;
+  } else {
+    p.collisions += 1.0;
+    p.dE_tr += dE_tr;
+    p.dE_rot += dE_rot;
+  }
+  p.t_last = t;
+}
+
 void EventDriven::collide_wall(int i)
 {
   Hot &h = H[i];
@@ -977,6 +993,9 @@ void EventDriven::collide_wall(int i)
       0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
   c.dE = w.vibrating() ? dE : c.dE;
   const Vec3 dP = p.m * (c.v1 - h.v);    // (a thermal wall's too)
+  if (tally_on)
+    tally(i, h.a * n, dP, t, 0.5 * p.m * (norm2(c.v1) - norm2(h.v)),
+          0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w)), true);
   h.v = c.v1;
   p.w = c.w1;
   if (!TL.empty()) TL[i] = t;
@@ -1052,6 +1071,13 @@ void EventDriven::collide_pair(int i)
   if (tc_elastic) law = law.elastic();
   Body b1{hp.v, p.w, p.m, hp.a, qt[s.type]}, b2{hq.v, q.w, q.m, hq.a, qt[S[j].type]};
   const Collision c = collide(law, b1, b2, n);
+  if (tally_on) {    // (r (x) dP is the same seen from j: -r (x) -dP)
+    const Vec3 half = 0.5 * r;
+    tally(i, half, c.dP, t, 0.5 * p.m * (norm2(c.v1) - norm2(hp.v)),
+          0.5 * b1.q * p.m * hp.a * hp.a * (norm2(c.w1) - norm2(p.w)), false);
+    tally(j, half, c.dP, t, 0.5 * q.m * (norm2(c.v2) - norm2(hq.v)),
+          0.5 * b2.q * q.m * hq.a * hq.a * (norm2(c.w2) - norm2(q.w)), false);
+  }
   hp.v = c.v1;
   p.w = c.w1;
   hq.v = c.v2;
@@ -1276,6 +1302,7 @@ EDStats EventDriven::advance_to(double t_end)
   stats.wall_hits.assign(opt.walls.size(), 0);
   stats.wall_impulse.assign(3 * opt.walls.size(), 0.0);
   stats.wall_work.assign(opt.walls.size(), 0.0);
+  if (tally_on) PT.assign(H.size(), ParticleTally{{0, 0, 0, 0, 0, 0}, 0, 0, 0, 0, 0, -INF});
   for (auto &s : S) s.ncollisions = 0;
   const int n = (int) H.size();
   window_crossings = 0;

@@ -263,6 +263,18 @@ class EventDriven {
   }
   // optional per-window list of the booked collisions (pairs and walls) into *log
   void record_collisions(std::vector<EDCollisionRecord> *log) { collision_log = log; }
+  // Optional per-particle tallies of each window (by external index; every collision a particle
+  // takes part in, booked here or not): the collision virial (6 values as EDStats::virial, half
+  // of a pair collision's r_a dP_b to each partner, a wall collision's to its particle), its
+  // pair and wall collisions, the changes of its translational and rotational kinetic energy in
+  // pair collisions and of its kinetic energy in wall collisions, and the window time of its
+  // last collision (-inf: none)
+  struct ParticleTally {
+    double virial[6];
+    double collisions, wall_collisions, dE_tr, dE_rot, dE_wall, t_last;
+  };
+  void tally_particles(bool on) { tally_on = on; }
+  const ParticleTally &particle_tally(int e) const { return PT[e]; }
   // Fast particles, for a bound on how far particles travel in a window (the guard of domain
   // windows): after track_fast(s2), every velocity change (collision, wall, kick) that leaves
   // a particle with a squared speed of s2 or more lists it with that squared speed, in the
@@ -411,6 +423,10 @@ class EventDriven {
   double clock = 0.0;
   std::vector<EDEvent> *history = nullptr;
   std::vector<EDCollisionRecord> *collision_log = nullptr;
+  bool tally_on = false;
+  std::vector<ParticleTally> PT;         // (tally_particles)
+  // particle i's part in a collision at t: r (x) dP (halved for a pair), its energy changes
+  void tally(int i, const Vec3 &r, const Vec3 &dP, double t, double dE_tr, double dE_rot, bool wall);
   const uint8_t *record_only = nullptr;
   double fast_s2 = INF;                  // track_fast(): the threshold, and who reached it
   bool fast_on = false;
