@@ -18,6 +18,16 @@ for np in 2 4; do
     diff <(tail -n +10 "$work/state.np1") <(tail -n +10 "$work/state.np$np") | head -5
     exit 1
   fi
+  if ! cmp -s "$work/state.np1.peratom" "$work/state.np$np.peratom"; then
+    echo "FAILED: the per-atom virials or collision tallies on $np ranks differ from 1 rank"
+    diff "$work/state.np1.peratom" "$work/state.np$np.peratom" | head -5
+    exit 1
+  fi
 done
+# (the last step had collisions: its per-atom collision counts are not all zero)
 n=$(($(wc -l < "$work/state.np1") - 9))
-echo "PASSED: $n atoms, identical final state (positions, velocities, spins, images) on 1, 2 and 4 ranks"
+if ! tail -n "$n" "$work/state.np1.peratom" | awk '{ s += $5 } END { exit !(s > 0) }'; then
+  echo "FAILED: no collisions in the per-atom tallies of the last step"
+  exit 1
+fi
+echo "PASSED: $n atoms, identical final state (positions, velocities, spins, images) and per-atom virials and collision tallies on 1, 2 and 4 ranks"
