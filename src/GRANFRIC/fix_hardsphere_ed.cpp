@@ -154,7 +154,7 @@ FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, con
 
 int FixHardsphereED::setmask()
 {
-  return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA | POST_FORCE;
+  return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA | POST_FORCE | POST_FORCE_RESPA;
 }
 
 void FixHardsphereED::request_atom_tallies()
@@ -164,6 +164,11 @@ void FixHardsphereED::request_atom_tallies()
   atally_n = 0;
   grow_arrays(atom->nmax);
   maxexchange = (tlast ? 1 : 0) + NTALLY;
+}
+
+void FixHardsphereED::post_force_respa(int vflag, int ilevel, int)
+{
+  if (ilevel == nlevels_respa - 1) post_force(vflag);    // (the outermost level, as the window)
 }
 
 // After LAMMPS moved and sorted the atoms (their tallies went with them): the step's virial,

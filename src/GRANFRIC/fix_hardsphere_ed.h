@@ -56,6 +56,7 @@ class FixHardsphereED : public Fix {
   int setmask() override;
   void init() override;
   void post_force(int) override;
+  void post_force_respa(int, int, int) override;
   void setup(int) override;
   void initial_integrate(int) override;
   void initial_integrate_respa(int, int, int) override;
