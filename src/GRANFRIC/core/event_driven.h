@@ -308,6 +308,7 @@ class EventDriven {
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
         XN.capacity() * sizeof(Vec3) + NB.capacity() * sizeof(Entry) + NN.capacity() +
+        PT.capacity() * sizeof(ParticleTally) +
         head.capacity() * sizeof(int) + queue.memory_bytes() +
         fast.capacity() * sizeof(fast[0]) + gtimes.capacity() * sizeof(double);
   }
