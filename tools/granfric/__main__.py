@@ -6,6 +6,8 @@
     /usr/bin/python3 tools/granfric collisions [--out DIR]
     /usr/bin/python3 tools/granfric convection --kappas K1 K2 ... [--q Q] [--g G] [--periods P]
 (the same as PYTHONPATH=tools /usr/bin/python3 -m granfric ..., or tools/reproduce PAPER)
+
+Each command takes --help for its options (reproduce PAPER --help, convection --help, ...).
 """
 import os
 import sys
@@ -14,12 +16,27 @@ if __name__ == "__main__" and not __package__:
     # run as `python3 tools/granfric ...`: import the package from tools/
     sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     from granfric.__main__ import main as _main
-    _main()
-    sys.exit(0)
+    sys.exit(_main())
+
+
+PAPERS = ("herbst2005", "luding1998", "risso2005")
+HELP = ("-h", "--help")
 
 
 def main(argv=None):
+    """Run a command; --help (of the tool or of a command) prints to stdout and returns 0, an
+    unknown command or paper exits with a message on stderr and status 2."""
     argv = list(sys.argv[1:] if argv is None else argv)
+    if argv and argv[0] in HELP:
+        print(__doc__)
+        return 0
+    if argv[:1] == ["reproduce"] and (len(argv) < 2 or argv[1] in HELP):
+        if len(argv) < 2:
+            sys.stderr.write("reproduce needs a paper: " + ", ".join(PAPERS) + "\n")
+            return 2
+        print("reproduce PAPER [--quick|--full] [--out DIR]: the figures and report of one paper "
+              "(" + ", ".join(PAPERS) + "); PAPER --help lists its options")
+        return 0
     if len(argv) >= 2 and argv[0] == "reproduce":
         paper, rest = argv[1], argv[2:]
         if paper == "herbst2005":
@@ -29,7 +46,8 @@ def main(argv=None):
         elif paper == "risso2005":
             from . import risso as m
         else:
-            sys.exit(f"unknown paper {paper}: use herbst2005, luding1998 or risso2005")
+            sys.stderr.write(f"unknown paper {paper}: use " + ", ".join(PAPERS) + "\n")
+            return 2
         if "--out" not in rest:
             rest += ["--out", f"out/{paper}"]
         return m.main(rest)
@@ -39,8 +57,9 @@ def main(argv=None):
     if argv and argv[0] == "collisions":
         from . import collision_demo
         return collision_demo.main(argv[1:])
-    sys.exit(__doc__)
+    sys.stderr.write((f"unknown command {argv[0]}\n\n" if argv else "") + __doc__ + "\n")
+    return 2
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

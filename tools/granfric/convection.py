@@ -227,12 +227,16 @@ def table_rows(table, g):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--kappas", type=float, nargs="+", default=[0.005, 0.03, 0.07])
-    ap.add_argument("--q", type=float, default=0.0)
-    ap.add_argument("--g", type=float, default=G_HIGH)
-    ap.add_argument("--periods", type=int, default=4000)
-    ap.add_argument("--every", type=int, default=50)
-    ap.add_argument("--out", default="out/convection")
+    ap.add_argument("--kappas", type=float, nargs="+", default=[0.005, 0.03, 0.07],
+                    help="friction coefficients kappa of the scan (default 0.005 0.03 0.07)")
+    ap.add_argument("--q", type=float, default=0.0, help="q = q_n = q_t of the law (default 0)")
+    ap.add_argument("--g", type=float, default=G_HIGH,
+                    help=f"gravity in the scene's units (default {G_HIGH})")
+    ap.add_argument("--periods", type=int, default=4000,
+                    help="vibration periods per kappa (default 4000)")
+    ap.add_argument("--every", type=int, default=50,
+                    help="periods between samples of Psi1, Psi2 (default 50)")
+    ap.add_argument("--out", default="out/convection", help="output folder (default out/convection)")
     a = ap.parse_args(argv)
     os.makedirs(a.out, exist_ok=True)
     res = scan(a.kappas, a.q, a.g, a.periods, a.every, a.out)

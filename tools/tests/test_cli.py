@@ -1,0 +1,42 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+# Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+"""The tools' command line: --help of the tool and of every command prints to stdout and exits 0;
+an unknown command or paper, or none, exits 2 with a message on stderr."""
+import os
+import subprocess
+import sys
+
+import pytest
+
+TOOL = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "granfric")
+
+
+def run(*args):
+    return subprocess.run([sys.executable, TOOL, *args], capture_output=True, text=True)
+
+
+@pytest.mark.parametrize("args", [["--help"], ["-h"], ["reproduce", "--help"],
+                                  ["reproduce", "herbst2005", "--help"],
+                                  ["reproduce", "luding1998", "--help"],
+                                  ["reproduce", "risso2005", "--help"], ["convection", "--help"],
+                                  ["collisions", "--help"]])
+def test_help_exits_0_on_stdout(args):
+    r = run(*args)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() and not r.stderr.strip()
+
+
+@pytest.mark.parametrize("args,says", [([], "reproduce"), (["bogus"], "unknown command bogus"),
+                                       (["reproduce", "nopaper"], "unknown paper nopaper"),
+                                       (["reproduce"], "needs a paper")])
+def test_bad_commands_exit_2_on_stderr(args, says):
+    r = run(*args)
+    assert r.returncode == 2
+    assert says in r.stderr and not r.stdout.strip()
+
+
+def test_every_convection_option_is_explained():
+    out = " ".join(run("convection", "--help").stdout.split())
+    for opt in ("--kappas", "--q", "--g", "--periods", "--every", "--out"):
+        assert opt in out
+    assert out.count("(default") == 6, out
