@@ -46,7 +46,7 @@ def main(argv=None):
         elif paper == "risso2005":
             from . import risso as m
         else:
-            sys.stderr.write(f"unknown paper {paper}: use " + ", ".join(PAPERS) + "\n")
+            sys.stderr.write(f"unknown paper {paper}: use herbst2005, luding1998 or risso2005\n")
             return 2
         if "--out" not in rest:
             rest += ["--out", f"out/{paper}"]
