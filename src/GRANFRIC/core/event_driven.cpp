@@ -989,13 +989,12 @@ void EventDriven::collide_wall(int i)
   }
   // kinetic energy change in the lab frame: a moving wall does work on the particle, so this is
   // not the law's dissipation (equal to it for a wall at rest)
-  const double dE = 0.5 * p.m * (norm2(c.v1) - norm2(h.v)) +
-      0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
+  const double dE_tr = 0.5 * p.m * (norm2(c.v1) - norm2(h.v));
+  const double dE_rot = 0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
+  const double dE = dE_tr + dE_rot;
   c.dE = w.vibrating() ? dE : c.dE;
   const Vec3 dP = p.m * (c.v1 - h.v);    // (a thermal wall's too)
-  if (tally_on)
-    tally(i, h.a * n, dP, t, 0.5 * p.m * (norm2(c.v1) - norm2(h.v)),
-          0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w)), true);
+  if (tally_on) tally(i, h.a * n, dP, t, dE_tr, dE_rot, true);
   h.v = c.v1;
   p.w = c.w1;
   if (!TL.empty()) TL[i] = t;
