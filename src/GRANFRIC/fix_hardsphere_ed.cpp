@@ -498,10 +498,10 @@ void FixHardsphereED::pack_atom(int i, double t0, double *b) const
 }
 
 // the kicks of every fix hardsphere/kick in [t0, t0 + dt) as global events of the core, applied
-// to core particles with IDs tags and masks; with shifts, the momentum shift of each kick is
-// summed over all ranks (collective: every rank calls this with the same kicks)
+// to core particles with IDs tags and masks; the momentum shift of each kick is summed over all
+// ranks (collective: every rank calls this with the same kicks)
 void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
-                                     const std::vector<int> &masks, bool shifts)
+                                     const std::vector<int> &masks)
 {
   struct Kick {
     double t;
@@ -516,14 +516,13 @@ void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<tag
     std::vector<long> index;
     kicks[f]->kicks_in(t0, t0 + dt, times, index);
     for (size_t m = 0; m < times.size(); m++)
-      all.push_back({times[m] - t0, f, index[m],
-                     shifts ? kicks[f]->momentum_shift(index[m], dim) : granfric::Vec3()});
+      all.push_back({times[m] - t0, f, index[m], kicks[f]->momentum_shift(index[m], dim)});
   }
   std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
   std::vector<double> times(all.size());
   for (size_t m = 0; m < all.size(); m++) times[m] = all[m].t;
-  ed.set_global_events(times, [this, all, dim, &tags, &masks, shifts](int g) {
-    kicks[all[g].fix]->apply(ed, tags, masks, all[g].k, dim, shifts ? &all[g].dvcm : nullptr);
+  ed.set_global_events(times, [this, all, dim, &tags, &masks](int g) {
+    kicks[all[g].fix]->apply(ed, tags, masks, all[g].k, dim, all[g].dvcm);
   });
 }
 
@@ -552,6 +551,21 @@ double FixHardsphereED::window_start_time() const
   return update->atime + (double) (update->ntimestep - 1 - update->atimestep) * update->dt;
 }
 
+// After a restart file is written, the next window starts from the atoms exactly as a run that
+// reads the file does: positions remapped into the box as read_restart remaps them, a new cell
+// grid and new predictions from those positions, the clock anchored at the restart step (see
+// write_restart). The kept event
+// queue would continue with other rounding (its particles' states are lazy, its predictions
+// older), so a run continued from the file would leave the uninterrupted one in the last bits,
+// and chaos would make it another trajectory. This way both are the same, bit for bit, at the
+// cost of one rebuild per restart file.
+void FixHardsphereED::resync_for_restart()
+{
+  resync = false;
+  for (int i = 0; i < atom->nlocal; i++) domain->remap(atom->x[i], atom->image[i]);
+  queue_valid = dom_valid = false;
+}
+
 /* ----------------------------------------------------------------------
    one window: gather the system (ordered by atom ID, so the result does not depend on the
    number of ranks or on atom sorting), run the core, take back the owned atoms
@@ -565,6 +579,7 @@ void FixHardsphereED::initial_integrate(int vflag)
   const double dt = update->dt;
   const double t0 = window_start_time();
   totals[STEP_CONFLICTS] = totals[STEP_COMM] = totals[STEP_PREDICTED] = 0.0;
+  if (resync) resync_for_restart();
   if (parallel == DOMAIN && comm->nprocs > 1) {
     // the shell widens after a conflict (in dense gases collision chains outrun v_max) and
     // narrows slowly while windows pass; the same on every rank (conflicts are global)
@@ -715,7 +730,7 @@ void FixHardsphereED::window_gather(double t0, double dt)
     cmask.resize(ntotal);
     for (int s = 0; s < ntotal; s++) cmask[s] = (int) field(order[s], 14);
   }
-  if (!kicks.empty()) schedule_kicks(t0, dt, otags, cmask, false);
+  if (!kicks.empty()) schedule_kicks(t0, dt, otags, cmask);
 
   ed.set_accounting(granfric::EDAccounting());
   ed.record_events(nullptr);
@@ -919,24 +934,35 @@ int FixHardsphereED::unpack_exchange(int nlocal, double *buf)
 
 void FixHardsphereED::write_restart(FILE *fp)
 {
+  // (every rank: see resync_for_restart) A run that reads this file anchors the elapsed time at
+  // this step (read_restart sets the step count); this run does the same, so that both compute
+  // the window start times, and with them kick and wall times, with the same rounding.
+  resync = true;
+  update->update_time();
   if (comm->me == 0) {
-    const double n = NVECTOR;
-    int size = (NVECTOR + 1) * sizeof(double);
+    // layout: -RESTART_FORMAT, the number of totals, the totals, the shell factor of domain
+    // windows (which decides which copies a rank's window holds, and so its rounding)
+    const double head[2] = {-RESTART_FORMAT, (double) NVECTOR};
+    int size = (NVECTOR + 3) * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(&n, sizeof(double), 1, fp);
+    fwrite(head, sizeof(double), 2, fp);
     fwrite(totals, sizeof(double), NVECTOR, fp);
+    fwrite(&widen, sizeof(double), 1, fp);
   }
 }
 
 void FixHardsphereED::restart(char *buf)
 {
-  // a count, then the totals (files of versions with fewer entries leave the new ones at 0)
+  // the totals (files with fewer entries leave the new ones at 0); files of the first format
+  // start with the count and end with the totals
   const auto *d = reinterpret_cast<const double *>(buf);
+  const bool extras = d[0] == -RESTART_FORMAT;
+  if (extras) d++;
   const int n = std::min((int) d[0], (int) NVECTOR);
   memcpy(totals, d + 1, n * sizeof(double));
-  // rebuilds are work done by this fix instance (reading a restart always costs one), not a
-  // property of the trajectory: counted afresh, so a restarted run reports what a continuous one does
-  totals[QUEUE_REBUILDS] = 0.0;
+  if (extras) widen = d[1 + (int) d[0]];
+  // (the rebuild count continues too: the step after the file was written starts afresh in
+  // the writing run as in this one, see resync_for_restart)
 }
 
 int FixHardsphereED::pack_restart(int i, double *buf)

@@ -46,6 +46,7 @@ class FixHardsphereED : public Fix {
          // particles predicted afresh at the start of the last step (over all ranks)
          STEP_PREDICTED, NVECTOR };
   enum { GATHER, DOMAIN };
+  static constexpr double RESTART_FORMAT = 2.0;    // (see write_restart)
 
   FixHardsphereED(class LAMMPS *, int, char **);
   // error unless a fix hardsphere/ed exists: the styles it calls from its window (kicks, walls)
@@ -138,6 +139,9 @@ class FixHardsphereED : public Fix {
   bool queue_valid;
   double prev_dt;
   bool same_atoms = false;                      // otags unchanged since the core's last start
+  // a restart file was written: the next window starts afresh from the atoms as the file holds
+  // them, as a run continued from that file does (see resync_for_restart)
+  bool resync = false;
   // periods between the core's frame and LAMMPS's, per core particle and dimension (noff),
   // within +-OFFSET_MAX: a window that would go beyond ends with the queue dropped, so the next
   // one starts afresh from LAMMPS's positions with the offsets back at 0
@@ -159,6 +163,7 @@ class FixHardsphereED : public Fix {
   std::vector<granfric::LawParams> law_table() const;
   void configure_core(const granfric::EDOptions &o, bool collective = true);
   double window_start_time() const;
+  void resync_for_restart();
   // image flags of an atom that was wrapped by dimg periods (most are not: inline test)
   static void shift_image(imageint &image, const int *dimg)
   {
@@ -189,7 +194,7 @@ class FixHardsphereED : public Fix {
   void start_core(bool collective);
   void core_failed(const std::exception &e, bool collective);
   void schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
-                      const std::vector<int> &masks, bool shifts);
+                      const std::vector<int> &masks);
 
   // domain-decomposed windows (fix_hardsphere_ed_domain.cpp)
   std::vector<granfric::EDEvent> history;
@@ -198,6 +203,7 @@ class FixHardsphereED : public Fix {
   std::vector<int> gmask;                       // their masks (0: empty slot)
   // the core kept from the last domain window: its slots are matched to atoms by ID, and only
   // atoms whose state arrives different from the slot's are predicted afresh
+  std::vector<int> dom_aorder;    // the atoms of a domain window in the order of their IDs
   bool dom_valid = false;
   double dom_dt = 0.0;
   double dom_lo[3] = {0, 0, 0}, dom_hi[3] = {0, 0, 0};    // the kept cell grid (open dimensions)

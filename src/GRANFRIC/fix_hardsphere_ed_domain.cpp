@@ -251,6 +251,24 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       }
     }
   const int nghost = (int) gsrc.size();
+  // The atoms of this window in the order of their IDs: slots are given in that order, so that
+  // the window does not depend on the order in which LAMMPS stores the atoms (which differs
+  // between a run and its continuation from a restart file). LAMMPS reorders atoms only when it
+  // reneighbors: the order of the last window usually still holds.
+  std::vector<int> &aorder = dom_aorder;
+  {
+    auto tag_of = [&](int a) { return a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal]]; };
+    const int n = nlocal + nghost;
+    // (n indices below n with increasing IDs: the sorted order, each atom once)
+    bool same = (int) aorder.size() == n;
+    for (int k = 0; same && k < n; k++)
+      same = aorder[k] < n && (k == 0 || tag_of(aorder[k - 1]) < tag_of(aorder[k]));
+    if (!same) {
+      aorder.resize(n);
+      for (int a = 0; a < n; a++) aorder[a] = a;
+      std::sort(aorder.begin(), aorder.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
+    }
+  }
 
   // ------------------------------------------------ the local system: kept, or afresh
   // The core of the last window is kept when its cell grid still covers this window's region
@@ -389,7 +407,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     uint8_t *own_now = sowned.data();
     int *gm = gmask.data(), *ls = lslot.data();
     const int *ins = inslot.data();
-    for (int a = 0; a < nlocal + nghost; a++) {
+    for (int a : aorder) {
       int sl = ins[a];
       const bool own = a < nlocal;
       const bool was_mine = own && sl >= 0 && prev[sl];
@@ -434,8 +452,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       }
     }
   } else {
-    // afresh: owned atoms in slots 0..nlocal-1, the copies after them, then empty slots for
-    // later windows; the cell grid covers this window's region and a margin W
+    // afresh: the atoms in slots 0..n-1 in the order of their IDs, then empty slots for later
+    // windows; the cell grid covers this window's region and a margin W
     cslot.clear();
     for (int d = 0; d < 3; d++) {
       dom_whole[d] = R.whole[d];
@@ -465,15 +483,16 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         dom_free.push_back(ns - 1 - (e - n));
         continue;
       }
+      const int a = aorder[e];
       double in[NPACK];
-      record_of(e, in);
+      record_of(a, in);
       set_state(p, in);
       p.t_last = in[13];
       gtag[e] = (long) in[0];
       gmask[e] = (int) in[14];
-      if (e < nlocal) {
+      if (a < nlocal) {
         sowned[e] = 1;
-        lslot[e] = e;
+        lslot[a] = e;
       } else {
         cslot.push_back(e);
       }
@@ -523,7 +542,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   for (size_t f = 0; f < kicks.size(); f++) kick_from[f] = kicks[f]->kick_counter();
   if (!kicks.empty()) {
     kick_tags.assign(gtag.begin(), gtag.end());
-    schedule_kicks(t0, dt, kick_tags, gmask, true);
+    schedule_kicks(t0, dt, kick_tags, gmask);
   }
 
   clog.clear();

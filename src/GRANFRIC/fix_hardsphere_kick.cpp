@@ -7,6 +7,7 @@
 #include "fix_hardsphere_kick.h"
 
 #include "fix_hardsphere_ed.h"
+#include "core/fixed_sum.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -135,54 +136,50 @@ double FixHardsphereKick::gaussian(long seed, long tag, long k, int n)
   return (n % 2 == 0) ? r * std::cos(2.0 * M_PI * u2) : r * std::sin(2.0 * M_PI * u2);
 }
 
+// The sums over the group are fixed-point sums (core/fixed_sum.h): the shift is the same, bit
+// for bit, whatever the atoms' order and their split among ranks. Gaussians from Box-Muller with
+// 53-bit uniforms stay below 9 in magnitude.
 granfric::Vec3 FixHardsphereKick::momentum_shift(long k, int dim) const
 {
-  double sum[4] = {0.0, 0.0, 0.0, 0.0}, all[4];
-  if (momentum) {
-    for (int i = 0; i < atom->nlocal; i++) {
-      if (!(atom->mask[i] & groupbit)) continue;
-      const long t = (long) atom->tag[i];
-      const double m = atom->rmass[i];
-      sum[0] += m * vdr * gaussian(seed, t, k, 0);
-      sum[1] += m * vdr * gaussian(seed, t, k, 1);
-      if (dim == 3) sum[2] += m * vdr * gaussian(seed, t, k, 2);
-      sum[3] += m;
-    }
+  if (!momentum) return granfric::Vec3();
+  double mmax = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) mmax = std::max(mmax, atom->rmass[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &mmax, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double n = (double) atom->natoms;
+  const double sp = granfric::fixed_scale(9.0 * vdr * mmax, n), sm = granfric::fixed_scale(mmax, n);
+  int64_t sum[4] = {0, 0, 0, 0};
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(atom->mask[i] & groupbit)) continue;
+    const long t = (long) atom->tag[i];
+    const double m = atom->rmass[i];
+    for (int d = 0; d < dim; d++) sum[d] += granfric::to_fixed(m * vdr * gaussian(seed, t, k, d), sp);
+    sum[3] += granfric::to_fixed(m, sm);
   }
-  MPI_Allreduce(sum, all, 4, MPI_DOUBLE, MPI_SUM, world);
-  if (!momentum || all[3] <= 0.0) return granfric::Vec3();
-  return (1.0 / all[3]) * granfric::Vec3(all[0], all[1], all[2]);
+  MPI_Allreduce(MPI_IN_PLACE, sum, 4, MPI_INT64_T, MPI_SUM, world);
+  if (sum[3] <= 0) return granfric::Vec3();
+  const double M = granfric::from_fixed(sum[3], sm);
+  return (1.0 / M) * granfric::Vec3(granfric::from_fixed(sum[0], sp), granfric::from_fixed(sum[1], sp),
+                                    granfric::from_fixed(sum[2], sp));
 }
 
 void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<tagint> &tag,
                               const std::vector<int> &mask, long k, int dim,
-                              const granfric::Vec3 *dvcm_given) const
+                              const granfric::Vec3 &dvcm) const
 {
   using granfric::Vec3;
   const int n = ed.size();
-  std::vector<Vec3> dv(n);
-  Vec3 P;
-  double M = 0.0;
-  for (int e = 0; e < n; e++) {
-    if (!(mask[e] & groupbit)) continue;
-    const long t = (long) tag[e];
-    dv[e] = vdr * Vec3(gaussian(seed, t, k, 0), gaussian(seed, t, k, 1),
-                       dim == 3 ? gaussian(seed, t, k, 2) : 0.0);
-    const auto p = std::as_const(ed).particle(e);
-    P += p.m * dv[e];
-    M += p.m;
-  }
-  const Vec3 dvcm = dvcm_given ? *dvcm_given : (momentum && M > 0.0) ? (1.0 / M) * P : Vec3();
   for (int e = 0; e < n; e++) {
     if (!(mask[e] & groupbit)) continue;
     auto p = ed.particle(e);
-    p.v += dv[e] - dvcm;
+    const long t = (long) tag[e];
+    p.v += vdr * Vec3(gaussian(seed, t, k, 0), gaussian(seed, t, k, 1),
+                      dim == 3 ? gaussian(seed, t, k, 2) : 0.0) - dvcm;
     if (spin > 0.0) {
       // rotational power = spin x translational power: d_tr v_dr^2 m / 2 per kick against
       // d_rot w^2 I / 2 with I = q m a^2
       const int dtr = dim, drot = dim == 2 ? 1 : 3;
       const double w = vdr * std::sqrt(spin * dtr / (p.q * p.a * p.a * drot));
-      const long t = (long) tag[e];
       if (dim == 2)
         p.w.z += w * gaussian(seed, t, k, 3);
       else

@@ -33,13 +33,12 @@ class FixHardsphereKick : public Fix {
   // the next kick's index, and setting it back (a window that is redone takes its kicks again)
   long kick_counter() const { return next_kick; }
   void rewind(long k) { next_kick = k; }
-  // apply kick k to the gathered system: tag[e], mask[e] of core particle e
-  // (dvcm: the velocity shift that keeps the total momentum zero, computed over the whole
-  // group by momentum_shift(); null: over the particles of ed, which then must be all of them)
+  // apply kick k to the particles of ed: tag[e], mask[e] of core particle e; dvcm: the velocity
+  // shift that keeps the total momentum zero (momentum_shift())
   void apply(granfric::EventDriven &ed, const std::vector<tagint> &tag,
-             const std::vector<int> &mask, long k, int dim,
-             const granfric::Vec3 *dvcm = nullptr) const;
-  // the shift of kick k over the group's atoms on all ranks (collective)
+             const std::vector<int> &mask, long k, int dim, const granfric::Vec3 &dvcm) const;
+  // the shift of kick k over the group's atoms on all ranks (collective; zero without
+  // momentum yes), the same bit for bit on any number of ranks
   granfric::Vec3 momentum_shift(long k, int dim) const;
   // the Gaussian number n (0..5) of an atom at kick k: a pure function of (seed, tag, k, n)
   static double gaussian(long seed, long tag, long k, int n);

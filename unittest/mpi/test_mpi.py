@@ -10,11 +10,14 @@ to 1e-9 of their scales. The chain scene is the constructed failure case: one st
 pulse through a chain that crosses the subdomain boundary, so the rank on the far side cannot
 know it from its ghosts; the check must detect the conflict and redo the window (and without
 the check, the result is wrong). Long runs on 1 and 2 ranks agree in their averages, and a
-restart written on one rank count continues on another.
+restart written on one rank count continues on another. A run killed with kill -9 and continued
+from its last restart file is the uninterrupted run, bit for bit.
 """
 import os
+import signal
 import subprocess
 import sys
+import time
 
 import numpy as np
 import pytest
@@ -186,3 +189,52 @@ def test_restart_across_rank_counts(tmp_path, first, second):
     lmp(w, second, scene="dense", steps=10, restart_in="mid", out="end")
     diff = scaled_difference(state(os.path.join(w, "straight")), state(os.path.join(w, "end")), box)
     assert diff < 1e-9
+
+
+def run_until_killed(work, np_, wait_for, timeout=120.0, **var):
+    """Start a run, wait until file wait_for exists, then kill -9 the whole process group (the
+    launcher and every MPI rank), as a crashed node or a queue's time limit would."""
+    cmd = [LMP] + (["-np", str(np_)] if np_ > 1 else []) + ["-in", SCENES, "-screen", "none",
+                                                           "-log", "none"]
+    for k, v in var.items():
+        cmd += ["-var", k, str(v)]
+    p = subprocess.Popen(cmd, cwd=work, start_new_session=True, stdout=subprocess.DEVNULL,
+                         stderr=subprocess.PIPE)
+    target = os.path.join(work, wait_for)
+    t0 = time.monotonic()
+    try:
+        while not os.path.exists(target):
+            assert p.poll() is None, "the run ended before it was killed: " + p.stderr.read().decode()[-2000:]
+            assert time.monotonic() - t0 < timeout, f"no {wait_for} after {timeout} s"
+            time.sleep(0.05)
+    finally:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+        p.wait()
+    assert p.returncode == -signal.SIGKILL
+
+
+# kicks (driven), walls with a vibrating base and gravity (vibrated), the TC model (dense and
+# vibrated); serial, and on 2 ranks in both parallel modes
+@pytest.mark.parametrize("scene", ["driven", "vibrated", "dense"])
+@pytest.mark.parametrize("np_,parallel", [(1, "domain"), (2, "domain"), (2, "gather")])
+def test_restart_after_kill_continues_bit_for_bit(tmp_path, scene, np_, parallel):
+    """A run killed (kill -9) after writing restart files, continued from the one of step 20,
+    reaches step 40 in exactly the state of the uninterrupted run (which writes the same
+    restart files)."""
+    w = str(tmp_path)
+    lmp(w, 1, scene=scene, steps=0, out="s0", restart_out="init")
+    common = dict(scene=scene, restart_every=20, every=10, parallel=parallel)
+    lmp(w, np_, steps=40, restart_in="init", out="straight", **common)
+    for f in os.listdir(w):
+        if f.startswith("rst"):
+            os.remove(os.path.join(w, f))
+    # (rst40 exists once rst20 is complete)
+    run_until_killed(w, np_, "rst40", steps=100000, restart_in="init", out="never", **common)
+    assert not os.path.exists(os.path.join(w, "never"))
+    lmp(w, np_, steps=20, restart_in="rst20", out="continued", **common)
+    with open(os.path.join(w, "straight")) as a, open(os.path.join(w, "continued")) as b:
+        sa, sb = a.read().splitlines()[9:], b.read().splitlines()[9:]
+    assert len(sa) > 100
+    differ = [x.split()[0] for x, y in zip(sa, sb) if x != y]
+    assert not differ, f"{len(differ)} atoms differ at step 40, the first IDs {differ[:5]}"
