@@ -198,7 +198,7 @@ def run_until_killed(work, np_, wait_for, timeout=120.0, **var):
                                                            "-log", "none"]
     for k, v in var.items():
         cmd += ["-var", k, str(v)]
-    p = subprocess.Popen(cmd, cwd=work, start_new_session=True, stdout=subprocess.DEVNULL,
+    p = subprocess.Popen(cmd, cwd=work, process_group=0, stdout=subprocess.DEVNULL,
                          stderr=subprocess.PIPE)
     target = os.path.join(work, wait_for)
     t0 = time.monotonic()
