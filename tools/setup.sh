@@ -12,7 +12,9 @@ out=${GRANFRIC_OUT:-$root/out}
 bash "$root/tools/install-deps.sh"
 export CCACHE_BASEDIR=$root
 cmake -S "$root" -B "$build" -G Ninja -D CMAKE_BUILD_TYPE=Release
-cmake --build "$build" --parallel "$(nproc)"
+# (what the main job runs: LAMMPS, the plugin, the core library of the Python tools; the tests
+# and their extra LAMMPS builds are tools/test.sh's)
+cmake --build "$build" --parallel "$(nproc)" --target granfricplugin granfric_capi
 export GRANFRIC_BUILD=$build
 mkdir -p "$out"
 

@@ -10,12 +10,18 @@
    array (N x 2): impact angle gamma at the bin centre, probability density P(gamma)
 ------------------------------------------------------------------------- */
 
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(hardsphere/collisions,ComputeHardsphereCollisions);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_H
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_H
 
 #include "compute.h"
 
-#include "core/event_driven.h"
+#include "event_driven.h"
 
 #include <string>
 
@@ -41,4 +47,5 @@ class ComputeHardsphereCollisions : public Compute {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif

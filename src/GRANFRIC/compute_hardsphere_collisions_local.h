@@ -15,6 +15,12 @@ ComputeStyle(hardsphere/collisions/local,ComputeHardsphereCollisionsLocal);
 // clang-format on
 #else
 
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(hardsphere/collisions/local,ComputeHardsphereCollisionsLocal);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_LOCAL_H
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_LOCAL_H
 
@@ -41,5 +47,6 @@ class ComputeHardsphereCollisionsLocal : public Compute {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif
 #endif

@@ -6,6 +6,12 @@
      Psi1 = (1/N) sum v_y sin(2 pi x / L_x),  Psi2 = -(1/N) sum v_y cos(2 pi x / L_x)
 ------------------------------------------------------------------------- */
 
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(hardsphere/convection,ComputeHardsphereConvection);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_CONVECTION_H
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_CONVECTION_H
 
@@ -23,4 +29,5 @@ class ComputeHardsphereConvection : public Compute {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif

@@ -7,6 +7,12 @@
    and compute pressure
 ------------------------------------------------------------------------- */
 
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(hardsphere/temp,ComputeHardsphereTemp);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_TEMP_H
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_TEMP_H
 
@@ -31,4 +37,5 @@ class ComputeHardsphereTemp : public Compute {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif

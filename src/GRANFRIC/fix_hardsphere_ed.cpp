@@ -40,9 +40,7 @@ static const char cite_granfric[] =
     " note = {Version 0.1, GPL-2.0-or-later}\n"
     "}\n\n";
 
-// per-atom values exchanged to build the window: tag, x, v, omega, radius, rmass, type, tlast,
-// mask
-static constexpr int NPACK = 15;
+static constexpr int NPACK = AtomRecordAt::SIZE;    // (doubles per atom in a message)
 
 /* ---------------------------------------------------------------------- */
 
@@ -81,13 +79,17 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "Fix hardsphere/ed reach = {} must be >= 1 (the ghost shell is "
                    "reach * v_max * dt wide, plus the contact distance)", reach);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "check") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed check", error);
+      check_windows = choice("check", arg[iarg + 1], {"yes", "no"}) == 0;
+      iarg += 2;
     } else if (strcmp(arg[iarg], "overlap") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed overlap", error);
       allow_overlap = choice("overlap", arg[iarg + 1], {"error", "allow"}) == 1;
       iarg += 2;
     } else {
       error->all(FLERR, "Unknown fix hardsphere/ed keyword: {} (allowed: gravity, tc, maxevents, "
-                 "parallel, reach, overlap)", arg[iarg]);
+                 "parallel, reach, check, overlap)", arg[iarg]);
     }
   }
   if (domain->dimension == 2 && gravity[2] != 0.0)
@@ -480,21 +482,22 @@ int FixHardsphereED::allgather(const std::vector<double> &send, std::vector<doub
   return total;
 }
 
-// the values of owned atom i sent to other ranks (NPACK doubles): tag, x, v, omega, radius,
-// rmass, type, last collision time relative to the window start t0, mask
-void FixHardsphereED::pack_atom(int i, double t0, double *b) const
+// owned atom i as a window takes it (tlast relative to the window start t0)
+AtomRecord FixHardsphereED::atom_record(int i, double t0) const
 {
-  b[0] = (double) atom->tag[i];
+  AtomRecord r;
+  r.tag = (double) atom->tag[i];
   for (int d = 0; d < 3; d++) {
-    b[1 + d] = atom->x[i][d];
-    b[4 + d] = atom->v[i][d];
-    b[7 + d] = atom->omega[i][d];
+    r.x[d] = atom->x[i][d];
+    r.v[d] = atom->v[i][d];
+    r.w[d] = atom->omega[i][d];
   }
-  b[10] = atom->radius[i];
-  b[11] = atom->rmass[i];
-  b[12] = (double) atom->type[i];
-  b[13] = tlast_since(i, t0);
-  b[14] = (double) atom->mask[i];
+  r.radius = atom->radius[i];
+  r.mass = atom->rmass[i];
+  r.type = (double) atom->type[i];
+  r.tlast = tlast_since(i, t0);
+  r.mask = (double) atom->mask[i];
+  return r;
 }
 
 // the kicks of every fix hardsphere/kick in [t0, t0 + dt) as global events of the core, applied
@@ -605,25 +608,14 @@ void FixHardsphereED::window_gather(double t0, double dt)
   const tagint *tag = atom->tag;
 
   // On several ranks every rank packs its atoms and gathers everybody's. On one rank the atom
-  // arrays are the system: they are read in place (no copy), through the same accessor.
+  // arrays are the system: they are read in place (no copy).
   const int nprocs = comm->nprocs, me = comm->me;
   const int *amask = atom->mask;
-  auto field = [&](int k, int f) -> double {
-    if (nprocs > 1) return recvbuf[(size_t) k * NPACK + f];
-    switch (f) {
-      case 0: return (double) tag[k];
-      case 1: case 2: case 3: return x[k][f - 1];
-      case 4: case 5: case 6: return v[k][f - 4];
-      case 7: case 8: case 9: return omega[k][f - 7];
-      case 10: return radius[k];
-      case 11: return rmass[k];
-      case 12: return (double) type[k];
-      case 13: return tlast_since(k, t0);
-      default: return (double) amask[k];
-    }
+  auto record = [&](int k) {
+    return nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : atom_record(k, t0);
   };
   if (nprocs > 1) sendbuf.resize((size_t) nlocal * NPACK);
-  for (int i = 0; i < nlocal && nprocs > 1; i++) pack_atom(i, t0, &sendbuf[(size_t) i * NPACK]);
+  for (int i = 0; i < nlocal && nprocs > 1; i++) atom_record(i, t0).write(&sendbuf[(size_t) i * NPACK]);
   int total = nlocal * NPACK;
   if (nprocs == 1) {
     displs.assign(1, 0);
@@ -634,7 +626,9 @@ void FixHardsphereED::window_gather(double t0, double dt)
 
   // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
   // step's order usually still holds
-  auto tag_of = [&](int k) { return nprocs > 1 ? (tagint) recvbuf[(size_t) k * NPACK] : tag[k]; };
+  auto tag_of = [&](int k) {
+    return nprocs > 1 ? (tagint) recvbuf[(size_t) k * NPACK + AtomRecordAt::TAG] : tag[k];
+  };
   bool same_order = (int) order.size() == ntotal;
   for (int s = 0; same_order && s < ntotal; s++) same_order = tag_of(order[s]) == otags[s];
   if (!same_order) {
@@ -672,10 +666,11 @@ void FixHardsphereED::window_gather(double t0, double dt)
       bw = omega[k];
       reuse = ed.is_body(s, radius[k], rmass[k], type[k]);
     } else {
-      bx = &recvbuf[(size_t) k * NPACK + 1];
-      bv = bx + 3;
-      bw = bx + 6;
-      reuse = ed.is_body(s, bx[9], bx[10], (int) bx[11]);
+      const double *r = &recvbuf[(size_t) k * NPACK];
+      bx = r + AtomRecordAt::X;
+      bv = r + AtomRecordAt::V;
+      bw = r + AtomRecordAt::W;
+      reuse = ed.is_body(s, r[AtomRecordAt::RADIUS], r[AtomRecordAt::MASS], (int) r[AtomRecordAt::TYPE]);
     }
     if (!reuse) break;
     double w[9];
@@ -705,15 +700,15 @@ void FixHardsphereED::window_gather(double t0, double dt)
     configure_core(core_options());
     ed.resize(ntotal);
     for (int s = 0; s < ntotal; s++) {
-      const int k = order[s];
+      const AtomRecord r = record(order[s]);
       auto p = ed.particle(s);
-      p.x = granfric::Vec3(field(k, 1), field(k, 2), field(k, 3));
-      p.v = granfric::Vec3(field(k, 4), field(k, 5), field(k, 6));
-      p.w = granfric::Vec3(field(k, 7), field(k, 8), field(k, 9));
-      p.a = field(k, 10);
-      p.m = field(k, 11);
-      p.type = (int) field(k, 12);
-      p.t_last = field(k, 13);
+      p.x = granfric::Vec3(r.x[0], r.x[1], r.x[2]);
+      p.v = granfric::Vec3(r.v[0], r.v[1], r.v[2]);
+      p.w = granfric::Vec3(r.w[0], r.w[1], r.w[2]);
+      p.a = r.radius;
+      p.m = r.mass;
+      p.type = (int) r.type;
+      p.t_last = r.tlast;
     }
     same_atoms = true;
     ed.set_clock(t0);
@@ -728,7 +723,10 @@ void FixHardsphereED::window_gather(double t0, double dt)
   // kicks of fix hardsphere/kick at their exact times inside the window
   if (!kicks.empty() || want_rows) {
     cmask.resize(ntotal);
-    for (int s = 0; s < ntotal; s++) cmask[s] = (int) field(order[s], 14);
+    for (int s = 0; s < ntotal; s++) {
+      const int k = order[s];
+      cmask[s] = nprocs > 1 ? (int) recvbuf[(size_t) k * NPACK + AtomRecordAt::MASK] : amask[k];
+    }
   }
   if (!kicks.empty()) schedule_kicks(t0, dt, otags, cmask);
 

@@ -17,12 +17,20 @@ FixStyle(hardsphere/ed,FixHardsphereED);
 // clang-format on
 #else
 
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(hardsphere/ed,FixHardsphereED);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_FIX_HARDSPHERE_ED_H
 #define LMP_GRANFRIC_FIX_HARDSPHERE_ED_H
 
 #include "fix.h"
 
-#include "core/event_driven.h"
+#include "atom_record.h"
+
+#include "event_driven.h"
 
 #include <functional>
 #include <string>
@@ -174,7 +182,7 @@ class FixHardsphereED : public Fix {
   bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);
   void written_state(int s, double t, double *w) const;
-  void pack_atom(int i, double t0, double *b) const;
+  AtomRecord atom_record(int i, double t0) const;    // owned atom i, window start t0
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
   template <class T>
   void sum_over_ranks(std::vector<T> &v, MPI_Datatype type) const;
@@ -204,6 +212,7 @@ class FixHardsphereED : public Fix {
   // the core kept from the last domain window: its slots are matched to atoms by ID, and only
   // atoms whose state arrives different from the slot's are predicted afresh
   std::vector<int> dom_aorder;    // the atoms of a domain window in the order of their IDs
+  bool check_windows = true;    // keyword check: redo a domain window that has a conflict
   bool dom_valid = false;
   double dom_dt = 0.0;
   double dom_lo[3] = {0, 0, 0}, dom_hi[3] = {0, 0, 0};    // the kept cell grid (open dimensions)
@@ -241,5 +250,6 @@ class FixHardsphereED : public Fix {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif
 #endif

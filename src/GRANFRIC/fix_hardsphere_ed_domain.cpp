@@ -43,8 +43,7 @@ using granfric::EDEvent;
 using granfric::INF;
 using granfric::Vec3;
 
-// per-atom values of a ghost: tag, x, v, omega, radius, rmass, type, tlast, mask (as gathered)
-static constexpr int NPACK = 15;
+static constexpr int NPACK = AtomRecordAt::SIZE;    // (doubles per atom in a message)
 // per event of a published history: window time, partner tag (-1 - k: wall k), v and omega after
 static constexpr int NEV = 8;
 
@@ -233,7 +232,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   const size_t nsend = sendlist.size();
   int s3[3];
   dsend.resize(nsend * NPACK);    // (every entry is set below)
-  for (size_t k = 0; k < nsend; k++) pack_atom(sendlist[k], t0, &dsend[k * NPACK]);
+  for (size_t k = 0; k < nsend; k++) atom_record(sendlist[k], t0).write(&dsend[k * NPACK]);
   allgather(dsend, drecv);
 
   // ------------------------------------------------ the copies this rank needs
@@ -245,7 +244,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
     for (int p = 0; p < nprocs; p++) {
       if (p == me) continue;
       for (int k = displs[p]; k < displs[p] + counts[p]; k += NPACK) {
-        if (!inside(R, &drecv[k + 1], s3)) continue;
+        if (!inside(R, &drecv[k + AtomRecordAt::X], s3)) continue;
         gsrc.push_back(k);
         gshift.insert(gshift.end(), s3, s3 + 3);
       }
@@ -257,7 +256,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // reneighbors: the order of the last window usually still holds.
   std::vector<int> &aorder = dom_aorder;
   {
-    auto tag_of = [&](int a) { return a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal]]; };
+    auto tag_of = [&](int a) { return a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal] + AtomRecordAt::TAG]; };
     const int n = nlocal + nghost;
     // (n indices below n with increasing IDs: the sorted order, each atom once)
     bool same = (int) aorder.size() == n;
@@ -280,7 +279,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // rank left them, so mostly only the copies that lacked a partner, or entered the region,
   // are predicted again. The result is the exact trajectory of the same system, as a fresh
   // start would give it, up to rounding.
-  for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k]);    // (the largest atom ID)
+  for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k + AtomRecordAt::TAG]);    // (the largest atom ID)
   granfric::EDOptions o = base;
   // every rank takes the cell width of the whole system (the same number of cells in a
   // dimension a rank covers whole, so that copies cross cells where their owners do: fewer
@@ -322,30 +321,28 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       seen[sl] = stamp;
     };
     for (int a = 0; a < nlocal; a++) match(a, (long) tag[a]);
-    for (int c = 0; c < nghost; c++) match(nlocal + c, (long) drecv[gsrc[c]]);
+    for (int c = 0; c < nghost; c++) match(nlocal + c, (long) drecv[gsrc[c] + AtomRecordAt::TAG]);
     keep = !twice;
     // the slots of atoms no longer here are emptied first, so every atom finds one if the slots
     // outnumber the atoms
     keep = keep && nlocal + nghost <= ed.size();
   }
-  // atom a of this window as a record (see NPACK): an owned atom (a < nlocal) from LAMMPS, a
-  // copy as received, at the periodic image inside this rank's region
-  auto record_of = [&](int a, double *in) {
-    if (a < nlocal) {
-      pack_atom(a, t0, in);
-      return;
-    }
-    memcpy(in, &drecv[gsrc[a - nlocal]], NPACK * sizeof(double));
+  // atom a of this window: an owned atom (a < nlocal) from LAMMPS, a copy as received, at the
+  // periodic image inside this rank's region
+  auto record_of = [&](int a) {
+    if (a < nlocal) return atom_record(a, t0);
+    AtomRecord r = AtomRecord::read(&drecv[gsrc[a - nlocal]]);
     const int *sh = &gshift[3 * (a - nlocal)];
-    for (int d = 0; d < 3; d++) in[1 + d] += sh[d] * domain->prd[d];
+    for (int d = 0; d < 3; d++) r.x[d] += sh[d] * domain->prd[d];
+    return r;
   };
-  auto set_state = [&](granfric::EDParticle p, const double *in) {
-    p.x = Vec3(in[1], in[2], in[3]);
-    p.v = Vec3(in[4], in[5], in[6]);
-    p.w = Vec3(in[7], in[8], in[9]);
-    p.a = in[10];
-    p.m = in[11];
-    p.type = (int) in[12];
+  auto set_state = [&](granfric::EDParticle p, const AtomRecord &r) {
+    p.x = Vec3(r.x[0], r.x[1], r.x[2]);
+    p.v = Vec3(r.v[0], r.v[1], r.v[2]);
+    p.w = Vec3(r.w[0], r.w[1], r.w[2]);
+    p.a = r.radius;
+    p.m = r.mass;
+    p.type = (int) r.type;
   };
   // Rounding: a copy's state as its owner computed it differs in the last bits from the same
   // atom's state as this rank computed it (other cell grids advance it at other times; copies
@@ -356,17 +353,17 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   // they are those of the same trajectory, as when a cell crossing re-rounds a state.
   constexpr double ROUND = 1e-12;
   const double vround = ROUND * (gmx[0] + 2.0 * vwall + g * dt), wround = vround / std::max(gmx[1], 1e-300);
-  auto rounding_only = [&](int sl, const double *in) {
+  auto rounding_only = [&](int sl, const AtomRecord &r) {
     const auto p = std::as_const(ed).particle(sl);
-    if (p.a != in[10] || p.m != in[11] || p.type != (int) in[12]) return false;
+    if (p.a != r.radius || p.m != r.mass || p.type != (int) r.type) return false;
     double xs[3], vs[3], ws[3];
     ed.state(sl, 0.0, xs, vs, ws);
     for (int d = 0; d < dim; d++)
-      if (std::fabs(in[1 + d] - xs[d]) > ROUND * (std::fabs(xs[d]) + in[10]) ||
-          std::fabs(in[4 + d] - vs[d]) > vround)
+      if (std::fabs(r.x[d] - xs[d]) > ROUND * (std::fabs(xs[d]) + r.radius) ||
+          std::fabs(r.v[d] - vs[d]) > vround)
         return false;
     for (int d = 0; d < 3; d++)
-      if (std::fabs(in[7 + d] - ws[d]) > wround) return false;
+      if (std::fabs(r.w[d] - ws[d]) > wround) return false;
     return true;
   };
   long repredicted = 0, owned_changed = 0;
@@ -421,29 +418,28 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         }
         owned_changed++;    // something other than this fix changed it
       }
-      double in[NPACK];
-      record_of(a, in);
+      const AtomRecord in = record_of(a);
       // (does the slot hold this state bit for bit, at window time 0? or the same trajectory
       // with other rounding, as its owner computed it on another cell grid: then the state is
       // taken and the slot's predictions stand)
       const bool same = sl >= 0 && !was_mine &&
-          (ed.holds(sl, 0.0, in + 1, in + 4, in + 7, in[10], in[11], (int) in[12]) ||
-           (rounding_only(sl, in) && ed.nudge(sl, in + 1, in + 4, in + 7)));
+          (ed.holds(sl, 0.0, in.x, in.v, in.w, in.radius, in.mass, (int) in.type) ||
+           (rounding_only(sl, in) && ed.nudge(sl, in.x, in.v, in.w)));
       if (sl < 0) {
         sl = dom_free.back();
         dom_free.pop_back();
-        dom_slot[(long) in[0]] = sl;
-        gtag[sl] = (long) in[0];
+        dom_slot[(long) in.tag] = sl;
+        gtag[sl] = (long) in.tag;
       }
       auto ps = ed.particle(sl);
       // the last-collision time as its owner has it, unless this rank owned the atom already
-      if (!was_mine) ps.t_last = in[13];
+      if (!was_mine) ps.t_last = in.tlast;
       if (!same) {
         set_state(ps, in);
         ed.changed(sl);
         repredicted++;
       }
-      gmask[sl] = (int) in[14];
+      gmask[sl] = (int) in.mask;
       if (own) {
         sowned[sl] = 1;
         lslot[a] = sl;
@@ -484,12 +480,11 @@ bool FixHardsphereED::window_domain(double t0, double dt)
         continue;
       }
       const int a = aorder[e];
-      double in[NPACK];
-      record_of(a, in);
+      const AtomRecord in = record_of(a);
       set_state(p, in);
-      p.t_last = in[13];
-      gtag[e] = (long) in[0];
-      gmask[e] = (int) in[14];
+      p.t_last = in.tlast;
+      gtag[e] = (long) in.tag;
+      gmask[e] = (int) in.mask;
       if (a < nlocal) {
         sowned[e] = 1;
         lslot[a] = e;
@@ -727,9 +722,8 @@ bool FixHardsphereED::window_domain(double t0, double dt)
   MPI_Allreduce(local, global, 2, MPI_INT, MPI_SUM, world);
   totals[STEP_CONFLICTS] = (double) (global[0] + global[1]);
   totals[CONFLICTS] += totals[STEP_CONFLICTS];
-  // test hook: GRANFRIC_ED_UNCHECKED=1 keeps a conflicting window (shows what the check is for)
-  static const bool unchecked = getenv("GRANFRIC_ED_UNCHECKED") != nullptr;
-  if (global[0] + global[1] > 0 && !unchecked) {
+  // (check no keeps a conflicting window: a wrong result, to show what the check is for)
+  if (global[0] + global[1] > 0 && check_windows) {
     for (size_t f = 0; f < kicks.size(); f++) kicks[f]->rewind(kick_from[f]);
     queue_valid = false;
     dom_valid = false;

@@ -7,7 +7,7 @@
 #include "fix_hardsphere_kick.h"
 
 #include "fix_hardsphere_ed.h"
-#include "core/fixed_sum.h"
+#include "fixed_sum.h"
 
 #include "atom.h"
 #include "comm.h"

@@ -10,12 +10,18 @@
    (seed, atom ID, kick index), so a run is the same on any number of MPI ranks.
 ------------------------------------------------------------------------- */
 
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(hardsphere/kick,FixHardsphereKick);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_FIX_HARDSPHERE_KICK_H
 #define LMP_GRANFRIC_FIX_HARDSPHERE_KICK_H
 
 #include "fix.h"
 
-#include "core/event_driven.h"
+#include "event_driven.h"
 
 namespace LAMMPS_NS {
 
@@ -58,4 +64,5 @@ class FixHardsphereKick : public Fix {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif

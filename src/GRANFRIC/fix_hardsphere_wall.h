@@ -13,12 +13,18 @@
    those of pair_coeff I I for particles of type I.
 ------------------------------------------------------------------------- */
 
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(hardsphere/wall,FixHardsphereWall);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_FIX_HARDSPHERE_WALL_H
 #define LMP_GRANFRIC_FIX_HARDSPHERE_WALL_H
 
 #include "fix.h"
 
-#include "core/event_driven.h"
+#include "event_driven.h"
 
 #include <string>
 #include <vector>
@@ -60,4 +66,5 @@ class FixHardsphereWall : public Fix {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif

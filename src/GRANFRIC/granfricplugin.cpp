@@ -21,9 +21,9 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-template <granfric::LawKind K> Pair *pair_creator(LAMMPS *lmp)
+template <class P> Pair *pair_creator(LAMMPS *lmp)
 {
-  return new PairHardsphere(lmp, K);
+  return new P(lmp);
 }
 
 template <class S> S *style_creator(LAMMPS *lmp, int argc, char **argv)
@@ -55,13 +55,13 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   auto reg = (lammpsplugin_regfunc) regfunc;
   add(reg, lmp, handle, "pair", "hardsphere/rough",
       "GRANFRIC rough hard spheres: constant restitution r and beta",
-      (void *) &pair_creator<granfric::LawKind::ROUGH>, true);
+      (void *) &pair_creator<PairHardsphereRough>, true);
   add(reg, lmp, handle, "pair", "hardsphere/walton",
       "GRANFRIC hard spheres with Coulomb friction (Walton: r, mu, rtmax)",
-      (void *) &pair_creator<granfric::LawKind::WALTON>, true);
+      (void *) &pair_creator<PairHardsphereWalton>, true);
   add(reg, lmp, handle, "pair", "hardsphere/jz",
       "GRANFRIC hard discs/spheres, Jenkins-Zhang rule (qn, qt, kappa_s, kappa_d)",
-      (void *) &pair_creator<granfric::LawKind::JZ>, true);
+      (void *) &pair_creator<PairHardsphereJZ>, true);
   add(reg, lmp, handle, "fix", "hardsphere/ed",
       "GRANFRIC exact event-driven integrator for hard spheres and discs",
       (void *) &style_creator<FixHardsphereED>, false);

@@ -13,12 +13,20 @@
    pair would do now (for compute pair/local).
 ------------------------------------------------------------------------- */
 
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(hardsphere/rough,PairHardsphereRough);
+PairStyle(hardsphere/walton,PairHardsphereWalton);
+PairStyle(hardsphere/jz,PairHardsphereJZ);
+// clang-format on
+#else
+
 #ifndef LMP_GRANFRIC_PAIR_HARDSPHERE_H
 #define LMP_GRANFRIC_PAIR_HARDSPHERE_H
 
 #include "pair.h"
 
-#include "core/collision.h"
+#include "collision.h"
 
 #include <string>
 
@@ -72,6 +80,21 @@ class PairHardsphere : public Pair {
   void mix(int i, int j);
 };
 
+// the three styles: PairHardsphere with its law (LAMMPS creates a pair style from LAMMPS * alone)
+class PairHardsphereRough : public PairHardsphere {
+ public:
+  PairHardsphereRough(class LAMMPS *lmp) : PairHardsphere(lmp, granfric::LawKind::ROUGH) {}
+};
+class PairHardsphereWalton : public PairHardsphere {
+ public:
+  PairHardsphereWalton(class LAMMPS *lmp) : PairHardsphere(lmp, granfric::LawKind::WALTON) {}
+};
+class PairHardsphereJZ : public PairHardsphere {
+ public:
+  PairHardsphereJZ(class LAMMPS *lmp) : PairHardsphere(lmp, granfric::LawKind::JZ) {}
+};
+
 }    // namespace LAMMPS_NS
 
+#endif
 #endif

@@ -639,9 +639,11 @@ TEST_F(FixErrors, Keywords)
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed gravity a b 0", "Expected floating point");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed speed 2",
                    "Unknown fix hardsphere/ed keyword: speed \\(allowed: gravity, tc, maxevents, "
-                   "parallel, reach, overlap\\)");
+                   "parallel, reach, check, overlap\\)");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed parallel fast",
                    "parallel fast is not available \\(allowed: domain, gather\\)");
+  EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed check maybe",
+                   "check maybe is not available \\(allowed: yes, no\\)");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed parallel", "Illegal fix hardsphere/ed parallel");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed reach 0.5", "reach = 0.5 must be >= 1");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed reach x", "Expected floating point");

@@ -135,7 +135,7 @@ def test_chain_across_boundary_is_detected_and_redone(tmp_path):
     # the pulse went through: the last disc of the chain moves, the striker rests
     assert a[30, 3] == pytest.approx(1.0) and abs(a[31, 3]) < 1e-12
     # without the check the rank beyond the boundary never sees the pulse
-    lmp(w, 2, env={"GRANFRIC_ED_UNCHECKED": "1"}, scene="chain", steps=1, out="s2u", log="log2u")
+    lmp(w, 2, scene="chain", check="no", steps=1, out="s2u", log="log2u")
     u = state(os.path.join(w, "s2u"))
     assert np.abs(a[:, 3] - u[:, 3]).max() > 0.5
 
