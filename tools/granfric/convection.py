@@ -69,8 +69,8 @@ def run_point(kappa, q, g, periods, every, out, init="none", seed=2005):
     # command compares them as words
     save = "restart_" + tag.replace(".", "p")
     lmp.run(INPUT, {"kappa": kappa, "q": q, "g": g, "periods": periods, "every": every,
-                    "out": f"log.{tag}", "init": init, "save": save, "seed": seed},
-            cwd=out)
+                    "profile": f"log.{tag}.profile", "init": init, "save": save, "seed": seed},
+            cwd=out, log=f"log.{tag}")
     return os.path.join(out, f"log.{tag}"), save
 
 

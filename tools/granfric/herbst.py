@@ -29,13 +29,13 @@ def simulate(r, mu, rtmax, phi, tend, out, nside=64, fdr=2.0, vdr=0.1, seed=4321
       d["gamma"]:  the impact-angle histogram (gamma, P(gamma)) of the second half of the run
                    (a second compute hardsphere/collisions, so thermo's collision windows are
                    left alone)."""
-    v = {"r": r, "mu": mu, "rtmax": rtmax, "phi": phi, "tend": tend, "out": out, "nside": nside,
+    v = {"r": r, "mu": mu, "rtmax": rtmax, "phi": phi, "tend": tend, "nside": nside,
          "fdr": fdr, "vdr": vdr, "seed": seed, "dt": dt}
     script = os.path.join(EXAMPLE, "in.driven")
     if series_every:
         script = _script_with_series(os.path.dirname(os.path.abspath(out)))
         v.update({"tevery": int(series_every), "tfile": out + ".T", "gfile": out + ".gamma"})
-    lmp.run(script, v)
+    lmp.run(script, v, log=out)
     d = lammpslog.read_thermo(out)
     if series_every:
         s = lammpslog.read_ave_time(out + ".T")

@@ -28,10 +28,10 @@ FLOW_ONSET = 0.02    # 2 % of E_tr in the 8x8 (4x4x4) flow field: clustering/vor
 
 def simulate(dim, r, beta, phi, tend, out, nside=None, seed=4321, tc=0.0):
     script = os.path.join(EXAMPLE, f"in.cooling{dim}d")
-    v = {"r": r, "beta": beta, "phi": phi, "tend": tend, "out": out, "seed": seed, "tc": tc}
+    v = {"r": r, "beta": beta, "phi": phi, "tend": tend, "seed": seed, "tc": tc}
     if nside:
         v["nside"] = nside
-    lmp.run(script, v)
+    lmp.run(script, v, log=out)
     return lammpslog.read_thermo(out)
 
 

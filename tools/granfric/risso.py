@@ -22,7 +22,7 @@ COMPACTION = os.path.join(lmp.ROOT, "examples", "compaction", "in.compaction")
 def compaction(kappa, out, tend=20000.0, seed=4321):
     """Mean centre-of-mass height (second half of the run) of the Fig. 2 system at friction
     kappa, with its block standard error."""
-    lmp.run(COMPACTION, {"kappa": kappa, "tend": tend, "out": out, "seed": seed})
+    lmp.run(COMPACTION, {"kappa": kappa, "tend": tend, "seed": seed}, log=out)
     d = lammpslog.read_thermo(out)
     t, y = d["Time"], d["v_ycm"]
     return lammpslog.block_mean(y[t > 0.5 * t[-1]], 4)
