@@ -2,7 +2,37 @@
 # Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Shared command-line pieces of the scene scripts (herbst, luding, risso)."""
 import argparse
+import importlib
 import os
+import sys
+
+DEPS = ("numpy", "scipy", "matplotlib")
+DEBIAN = "python3-numpy python3-scipy python3-matplotlib"
+
+
+def missing_deps():
+    """The names of numpy, scipy and matplotlib that cannot be imported."""
+    missing = []
+    for name in DEPS:
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            missing.append(name)
+    return missing
+
+
+def require_deps():
+    """0 when numpy, scipy and matplotlib import; otherwise a message on stderr naming the Debian
+    packages and the install script, and 2 (the exit status for the caller)."""
+    missing = missing_deps()
+    if not missing:
+        return 0
+    sys.stderr.write(
+        f"granfric: the Python tools need numpy, scipy and matplotlib; {', '.join(missing)} "
+        f"cannot be imported by {sys.executable}.\n"
+        f"Install Debian's packages {DEBIAN} (as root: bash tools/install-deps.sh, or "
+        f"apt-get install {DEBIAN}) and run the tools with /usr/bin/python3.\n")
+    return 2
 
 
 def scene_args(argv, doc, default_out, quick_help, full_help, extra=None):
