@@ -35,17 +35,28 @@ def require_deps():
     return 2
 
 
+def logs_dir(out):
+    """out/logs (created): where the LAMMPS logs and their side files of a job go, below the
+    figures and reports at the top of out."""
+    path = os.path.join(out, "logs")
+    os.makedirs(path, exist_ok=True)
+    return path
+
+
 def scene_args(argv, doc, default_out, quick_help, full_help, extra=None):
-    """--out DIR (created), --quick (default) or --full; extra(parser) may add more options."""
+    """--out DIR (created), --quick (default) or --full; extra(parser) may add more options.
+    a.logs is DIR/logs (created) for the LAMMPS logs."""
     ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
     if extra:
         extra(ap)
-    ap.add_argument("--out", default=default_out)
+    ap.add_argument("--out", default=default_out,
+                    help=f"figures and report here, LAMMPS logs in its logs/ (default {default_out})")
     g = ap.add_mutually_exclusive_group()
     g.add_argument("--quick", action="store_true", help=quick_help)
     g.add_argument("--full", action="store_true", help=full_help)
     a = ap.parse_args(argv)
     os.makedirs(a.out, exist_ok=True)
+    a.logs = logs_dir(a.out)
     return a
 
 

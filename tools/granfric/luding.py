@@ -126,7 +126,7 @@ def main(argv=None):
     N = 100000 if a.full else 20000
     results = []
     for dim, r, beta, phi in cli.progress(cases, "cooling runs"):
-        log = os.path.join(a.out, f"log.cool{dim}d_r{r}_b{beta}_phi{phi}")
+        log = os.path.join(a.logs, f"log.cool{dim}d_r{r}_b{beta}_phi{phi}")
         seeds = [4321] + [101 + k for k in range(nseeds - 1)]
         runs = [simulate(dim, r, beta, phi, tend, log + (f".seed{s}" if s != 4321 else ""), seed=s)
                 for s in seeds]
