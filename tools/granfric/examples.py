@@ -6,9 +6,9 @@ log.DDMonYY.NAME.g++.NP (NP MPI ranks), next to the input.
 
     tools/regenerate-example-logs          (= PYTHONPATH=tools /usr/bin/python3 -m granfric.examples)
 
-regenerates all of them (the old ones of each example are removed; the one machine-specific line,
-the directory LAMMPS loaded the plugin from, is written as <build>/plugins). compare() checks a new log
-against a reference the way tools/tests/test_examples.py does.
+regenerates all of them (the old ones of each example are removed; the one machine-specific
+line, the directory LAMMPS loaded the plugin from, is written as <build>/plugins). compare()
+checks a new log against a reference the way tools/tests/test_examples.py does.
 """
 import glob
 import os
