@@ -37,6 +37,10 @@ def main(argv=None):
         print("reproduce PAPER [--quick|--full] [--out DIR]: the figures and report of one paper "
               "(" + ", ".join(PAPERS) + "); PAPER --help lists its options")
         return 0
+    if argv and argv[0] in ("reproduce", "convection", "collisions"):
+        from .cli import require_deps
+        if require_deps():
+            return 2
     if len(argv) >= 2 and argv[0] == "reproduce":
         paper, rest = argv[1], argv[2:]
         if paper == "herbst2005":

@@ -69,8 +69,8 @@ def run_point(kappa, q, g, periods, every, out, init="none", seed=2005):
     # command compares them as words
     save = "restart_" + tag.replace(".", "p")
     lmp.run(INPUT, {"kappa": kappa, "q": q, "g": g, "periods": periods, "every": every,
-                    "out": f"log.{tag}", "init": init, "save": save, "seed": seed},
-            cwd=out)
+                    "profile": f"log.{tag}.profile", "init": init, "save": save, "seed": seed},
+            cwd=out, log=f"log.{tag}")
     return os.path.join(out, f"log.{tag}"), save
 
 
@@ -236,10 +236,12 @@ def main(argv=None):
                     help="vibration periods per kappa (default 4000)")
     ap.add_argument("--every", type=int, default=50,
                     help="periods between samples of Psi1, Psi2 (default 50)")
-    ap.add_argument("--out", default="out/convection", help="output folder (default out/convection)")
+    ap.add_argument("--out", default="out/convection",
+                    help="output folder: psi.png at its top, LAMMPS logs and restart files in its "
+                         "logs/ (default out/convection)")
     a = ap.parse_args(argv)
     os.makedirs(a.out, exist_ok=True)
-    res = scan(a.kappas, a.q, a.g, a.periods, a.every, a.out)
+    res = scan(a.kappas, a.q, a.g, a.periods, a.every, cli.logs_dir(a.out))
     plot_scan(res, os.path.join(a.out, "psi.png"), f"g = {a.g}, q = {a.q}, {a.periods} oscillations per kappa")
     print("\n".join(state_rows(res)))
 

@@ -29,13 +29,13 @@ def simulate(r, mu, rtmax, phi, tend, out, nside=64, fdr=2.0, vdr=0.1, seed=4321
       d["gamma"]:  the impact-angle histogram (gamma, P(gamma)) of the second half of the run
                    (a second compute hardsphere/collisions, so thermo's collision windows are
                    left alone)."""
-    v = {"r": r, "mu": mu, "rtmax": rtmax, "phi": phi, "tend": tend, "out": out, "nside": nside,
+    v = {"r": r, "mu": mu, "rtmax": rtmax, "phi": phi, "tend": tend, "nside": nside,
          "fdr": fdr, "vdr": vdr, "seed": seed, "dt": dt}
     script = os.path.join(EXAMPLE, "in.driven")
     if series_every:
         script = _script_with_series(os.path.dirname(os.path.abspath(out)))
         v.update({"tevery": int(series_every), "tfile": out + ".T", "gfile": out + ".gamma"})
-    lmp.run(script, v)
+    lmp.run(script, v, log=out)
     d = lammpslog.read_thermo(out)
     if series_every:
         s = lammpslog.read_ave_time(out + ".T")
@@ -134,12 +134,12 @@ def main(argv=None):
     if not a.full:
         nside, fdr, vdr, tend = 64, 2.0, 0.1, 600.0
         for r, mu, rt, phi in cli.progress(CASES_QUICK, "driven runs"):
-            log = os.path.join(a.out, f"log.driven_r{r}_mu{mu}_rt{rt}_phi{phi}")
+            log = os.path.join(a.logs, f"log.driven_r{r}_mu{mu}_rt{rt}_phi{phi}")
             d = simulate(r, "inf" if mu == math.inf else mu, rt, phi, tend, log, nside=nside,
                          fdr=fdr, vdr=vdr)
             rows.append(_row(r, mu, rt, phi, d, steady(d), nside, fdr, vdr))
     plan = herbst_figs.FULL if a.full else herbst_figs.QUICK
-    runs, res = herbst_figs.run(plan, a.out)
+    runs, res = herbst_figs.run(plan, a.out, a.logs)
     if a.full:   # the table lists every run of the figures; driven.png shows Fig. 11's runs
         for (phi, r, rt, mu), run in sorted(runs.items(), key=lambda kv: kv[0]):
             rows.append(_row(r, mu, rt, phi, run.d, run.st, plan.nside, plan.fdr, plan.vdr))

@@ -803,9 +803,9 @@ def make_figures(runs, plan, out):
     return res
 
 
-def run(plan, out):
-    """Simulate, plot, and return (runs, numbers)."""
-    runs = simulate_all(plan, out)
+def run(plan, out, logs=None):
+    """Simulate (LAMMPS logs in `logs`, default out), plot into out, and return (runs, numbers)."""
+    runs = simulate_all(plan, logs or out)
     return runs, make_figures(runs, plan, out)
 
 

@@ -12,13 +12,15 @@ When states coexist (jumps between clockwise and counter-clockwise rolls, or bet
 rolls), the samples form several clusters; K-means finds their centres.
 """
 import numpy as np
+from scipy.cluster.vq import kmeans2
 
 ROLLS = {0: "no convection", 1: "one roll", 2: "two rolls"}
 
 
 def kmeans(X, k, seed=0, restarts=10, iters=300):
-    """Lloyd's algorithm with k-means++ seeding, best of `restarts` runs by within-cluster sum of
-    squares. Returns (centres (k, d), labels (n,), inertia)."""
+    """K-means by scipy.cluster.vq.kmeans2 (k-means++ seeding), best of `restarts` runs by
+    within-cluster sum of squares, every run drawn from one generator seeded with `seed` (the
+    same X and seed give the same result). Returns (centres (k, d), labels (n,), inertia)."""
     X = np.asarray(X, dtype=float)
     n = len(X)
     if not 1 <= k <= n:
@@ -26,26 +28,10 @@ def kmeans(X, k, seed=0, restarts=10, iters=300):
     rng = np.random.default_rng(seed)
     best = None
     for _ in range(restarts):
-        # k-means++: each new centre drawn with probability proportional to D^2
-        C = [X[rng.integers(n)]]
-        for _ in range(1, k):
-            d2 = np.min(((X[:, None, :] - np.array(C)[None]) ** 2).sum(-1), axis=1)
-            tot = d2.sum()
-            C.append(X[rng.choice(n, p=d2 / tot)] if tot > 0 else X[rng.integers(n)])
-        C = np.array(C)
-        labels = None
-        for _ in range(iters):
-            d2 = ((X[:, None, :] - C[None]) ** 2).sum(-1)
-            new = d2.argmin(axis=1)
-            if labels is not None and np.array_equal(new, labels):
-                break
-            labels = new
-            for j in range(k):
-                if np.any(labels == j):
-                    C[j] = X[labels == j].mean(axis=0)
+        C, labels = kmeans2(X, k, iter=iters, minit="++", missing="warn", seed=rng)
         inertia = float(((X - C[labels]) ** 2).sum())
         if best is None or inertia < best[2]:
-            best = (C.copy(), labels.copy(), inertia)
+            best = (C, labels, inertia)
     return best
 
 

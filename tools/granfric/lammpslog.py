@@ -4,9 +4,9 @@
 import numpy as np
 
 
-def read_thermo(path, block=-1):
-    """Thermo table of a LAMMPS log file as a dict column -> numpy array. block selects one run
-    section (default: the last one)."""
+def read_thermo_blocks(path):
+    """Every thermo table of a LAMMPS log file, one per run section in order: a list of
+    (column names, numpy array of rows)."""
     blocks = []
     cols = None
     rows = []
@@ -28,10 +28,16 @@ def read_thermo(path, block=-1):
                 cols = None
     if cols is not None and rows:
         blocks.append((cols, rows))
+    return [(cols, np.array(rows, dtype=float).reshape(-1, len(cols))) for cols, rows in blocks]
+
+
+def read_thermo(path, block=-1):
+    """Thermo table of a LAMMPS log file as a dict column -> numpy array. block selects one run
+    section (default: the last one)."""
+    blocks = read_thermo_blocks(path)
     if not blocks:
         raise ValueError(f"no thermo output in {path}")
-    cols, rows = blocks[block]
-    data = np.array(rows, dtype=float).reshape(-1, len(cols))
+    cols, data = blocks[block]
     return {c: data[:, k] for k, c in enumerate(cols)}
 
 

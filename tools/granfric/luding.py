@@ -28,10 +28,10 @@ FLOW_ONSET = 0.02    # 2 % of E_tr in the 8x8 (4x4x4) flow field: clustering/vor
 
 def simulate(dim, r, beta, phi, tend, out, nside=None, seed=4321, tc=0.0):
     script = os.path.join(EXAMPLE, f"in.cooling{dim}d")
-    v = {"r": r, "beta": beta, "phi": phi, "tend": tend, "out": out, "seed": seed, "tc": tc}
+    v = {"r": r, "beta": beta, "phi": phi, "tend": tend, "seed": seed, "tc": tc}
     if nside:
         v["nside"] = nside
-    lmp.run(script, v)
+    lmp.run(script, v, log=out)
     return lammpslog.read_thermo(out)
 
 
@@ -126,7 +126,7 @@ def main(argv=None):
     N = 100000 if a.full else 20000
     results = []
     for dim, r, beta, phi in cli.progress(cases, "cooling runs"):
-        log = os.path.join(a.out, f"log.cool{dim}d_r{r}_b{beta}_phi{phi}")
+        log = os.path.join(a.logs, f"log.cool{dim}d_r{r}_b{beta}_phi{phi}")
         seeds = [4321] + [101 + k for k in range(nseeds - 1)]
         runs = [simulate(dim, r, beta, phi, tend, log + (f".seed{s}" if s != 4321 else ""), seed=s)
                 for s in seeds]

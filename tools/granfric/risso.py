@@ -22,7 +22,7 @@ COMPACTION = os.path.join(lmp.ROOT, "examples", "compaction", "in.compaction")
 def compaction(kappa, out, tend=20000.0, seed=4321):
     """Mean centre-of-mass height (second half of the run) of the Fig. 2 system at friction
     kappa, with its block standard error."""
-    lmp.run(COMPACTION, {"kappa": kappa, "tend": tend, "out": out, "seed": seed})
+    lmp.run(COMPACTION, {"kappa": kappa, "tend": tend, "seed": seed}, log=out)
     d = lammpslog.read_thermo(out)
     t, y = d["Time"], d["v_ycm"]
     return lammpslog.block_mean(y[t > 0.5 * t[-1]], 4)
@@ -68,7 +68,7 @@ def main(argv=None):
     # Fig. 2: compaction against kappa
     ks2 = (0.01, 0.1, 0.3, 1.0, 3.0) if not a.full else (0.003, 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 1.0, 3.0, 10.0)
     tend = 40000.0 if a.full else 20000.0
-    ycm = [compaction(k, os.path.join(a.out, f"log.compaction_k{k}"), tend=tend) for k in ks2]
+    ycm = [compaction(k, os.path.join(a.logs, f"log.compaction_k{k}"), tend=tend) for k in ks2]
     fig, ax = plt.subplots(figsize=(5.5, 4))
     ax.errorbar(ks2, [y for y, _ in ycm], yerr=[e for _, e in ycm], fmt="o-")
     ax.set_xscale("log")
@@ -114,7 +114,7 @@ def convection_figures(a):
         for gg, q in rows:
             if gg != g:
                 continue
-            res = convection.scan(kappas, q, g, periods, every, a.out, desc=f"convection g={g} q={q}")
+            res = convection.scan(kappas, q, g, periods, every, a.logs, desc=f"convection g={g} q={q}")
             points += res
             trans += convection.transitions(res)
             if q == 0.0:

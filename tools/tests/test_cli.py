@@ -11,8 +11,8 @@ import pytest
 TOOL = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "granfric")
 
 
-def run(*args):
-    return subprocess.run([sys.executable, TOOL, *args], capture_output=True, text=True)
+def run(*args, **kw):
+    return subprocess.run([sys.executable, TOOL, *args], capture_output=True, text=True, **kw)
 
 
 @pytest.mark.parametrize("args", [["--help"], ["-h"], ["reproduce", "--help"],
@@ -40,3 +40,19 @@ def test_every_convection_option_is_explained():
     for opt in ("--kappas", "--q", "--g", "--periods", "--every", "--out"):
         assert opt in out
     assert out.count("(default") == 6, out
+
+
+@pytest.mark.parametrize("hidden", ["numpy", "scipy", "matplotlib"])
+@pytest.mark.parametrize("args", [["reproduce", "herbst2005", "--quick"],
+                                  ["convection", "--kappas", "0.03"], ["collisions"]])
+def test_a_missing_python_package_gives_a_message_and_exit_2(hidden, args, tmp_path):
+    # a module of that name earlier on the path that fails to import, as when it is not installed
+    (tmp_path / f"{hidden}.py").write_text(f"raise ImportError('no module named {hidden}')\n")
+    env = dict(os.environ, PYTHONPATH=str(tmp_path))
+    r = run(*args, env=env, cwd=tmp_path)
+    assert r.returncode == 2, r.stderr
+    assert "Traceback" not in r.stderr and not r.stdout.strip()
+    assert hidden in r.stderr.split("cannot be imported")[0]
+    for word in ("python3-numpy", "python3-scipy", "python3-matplotlib",
+                 "bash tools/install-deps.sh"):
+        assert word in r.stderr

@@ -32,6 +32,14 @@ def test_kmeans_finds_well_separated_centres():
         assert len(set(labels[200 * j:200 * (j + 1)])) == 1
 
 
+def test_kmeans_is_deterministic_for_a_seed():
+    rng = np.random.default_rng(2)
+    X = np.vstack([blob(rng, c, 100) for c in ((-0.2, 0.0), (0.2, 0.0), (0.0, 0.3))])
+    C1, l1, i1 = kmeans.kmeans(X, 3, seed=5)
+    C2, l2, i2 = kmeans.kmeans(X, 3, seed=5)
+    assert np.array_equal(C1, C2) and np.array_equal(l1, l2) and i1 == i2
+
+
 def test_kmeans_rejects_bad_k():
     with pytest.raises(ValueError, match="k = 4"):
         kmeans.kmeans(np.zeros((3, 2)), 4)
