@@ -24,7 +24,7 @@ if [ ! -f "$top/src/lammps.h" ] || [ ! -f "$lists" ]; then
   echo "install-in-tree.sh: $top is not a LAMMPS source tree (no src/lammps.h or cmake/CMakeLists.txt)" >&2
   exit 2
 fi
-if ! grep -q "^  GRANULAR$" "$lists" || ! grep -q "^foreach(PKG_WITH_INCL KSPACE " "$lists"; then
+if ! grep -q "^  GRANULAR$" "$lists" || ! grep -qE "^foreach\(PKG_WITH_INCL (GRANFRIC )?KSPACE " "$lists"; then
   echo "install-in-tree.sh: $lists does not have the package lists of LAMMPS 4Feb2025 (GRANULAR in" \
        "STANDARD_PACKAGES, foreach(PKG_WITH_INCL KSPACE ...)); register GRANFRIC there by hand" >&2
   exit 2

@@ -78,12 +78,12 @@ def reference(entry, np):
     return found[-1] if found else None
 
 
-def run(entry, np, workdir, log, extra=None):
+def run(entry, np, workdir, log, extra=None, exe=None):
     """Run the short form of an example in workdir (its side files land there) with -log log;
-    extra variables override or add to the short form's."""
+    extra variables override or add to the short form's; exe: another LAMMPS (serial)."""
     directory, script, _, variables = entry
     v = dict(variables, **(extra or {}))
-    lmp.run(os.path.join(EXAMPLES, directory, script), v, cwd=workdir, np=np, log=log)
+    lmp.run(os.path.join(EXAMPLES, directory, script), v, cwd=workdir, np=np, log=log, exe=exe)
     return os.path.join(workdir, log)
 
 
@@ -144,5 +144,27 @@ def regenerate(out=sys.stdout):
     return 0
 
 
+def check(exe, out=sys.stdout):
+    """Run every example in its short form, serially, with the LAMMPS executable exe (e.g. one
+    with GRANFRIC built in) and compare with the reference logs on one rank; 0 if all agree."""
+    failed = 0
+    for entry in SHORT:
+        with tempfile.TemporaryDirectory() as work:
+            bad = compare(reference(entry, 1), run(entry, 1, work, "log.check", exe=exe),
+                          TOL[entry[2]])
+        failed += bool(bad)
+        out.write(f"{entry[2]}: " + ("agrees with its reference log\n" if not bad else
+                                     "FAILED\n  " + "\n  ".join(bad) + "\n"))
+    out.write(("FAILED" if failed else "PASSED") + f": {len(SHORT) - failed} of {len(SHORT)} "
+              f"examples agree with their reference logs ({exe})\n")
+    return 1 if failed else 0
+
+
 if __name__ == "__main__":
+    if len(sys.argv) == 3 and sys.argv[1] == "--check":
+        sys.exit(check(os.path.abspath(sys.argv[2])))
+    if len(sys.argv) > 1:
+        sys.exit("usage: tools/regenerate-example-logs            regenerate the reference logs\n"
+                 "       tools/regenerate-example-logs --check LMP  run the examples with LMP "
+                 "(serially) and compare")
     sys.exit(regenerate())

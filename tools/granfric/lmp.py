@@ -7,10 +7,13 @@ import subprocess
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def run(script, variables=None, cwd=None, np=1, log="none", quiet=True):
-    """tools/lmp -in script -var k v ...; raises RuntimeError with LAMMPS's error on failure."""
-    cmd = [os.path.join(ROOT, "tools", "lmp")]
+def run(script, variables=None, cwd=None, np=1, log="none", quiet=True, exe=None):
+    """tools/lmp -in script -var k v ...; raises RuntimeError with LAMMPS's error on failure.
+    exe: another LAMMPS executable with GRANFRIC's styles (serial only)."""
+    cmd = [exe] if exe else [os.path.join(ROOT, "tools", "lmp")]
     if np > 1:
+        if exe:
+            raise ValueError("another LAMMPS executable runs serially here")
         cmd += ["-np", str(np)]
     cmd += ["-in", script, "-log", log]
     for k, v in (variables or {}).items():

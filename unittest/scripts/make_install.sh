@@ -13,6 +13,7 @@ rm -rf "$work"
 mkdir -p "$work"
 cp -r "$top/src" "$top/cmake" "$work/"
 bash "$repo/tools/install-in-tree.sh" "$work" > /dev/null
+bash "$repo/tools/install-in-tree.sh" "$work" > /dev/null    # (again: an update of the copy)
 cd "$work/src"
 make yes-granfric > "$work/yes.log" 2>&1
 expect=()
