@@ -6,6 +6,8 @@
 
 #include "fix_hardsphere_ed.h"
 
+#include "hardsphere_host.h"
+
 #include "fix_hardsphere_kick.h"
 #include "fix_hardsphere_wall.h"
 
@@ -136,13 +138,6 @@ FixHardsphereED::~FixHardsphereED()
   atom->delete_callback(id, Atom::GROW);
   memory->destroy(tlast);
   memory->destroy(atally);
-}
-
-void FixHardsphereED::require(LAMMPS *lmp, const char *style, const char *id, const char *what)
-{
-  for (const auto &f : lmp->modify->get_fix_list())
-    if (dynamic_cast<FixHardsphereED *>(f)) return;
-  lmp->error->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
 }
 
 FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, const char *who)
@@ -551,7 +546,7 @@ void FixHardsphereED::written_state(int s, double t, double *w) const
 
 double FixHardsphereED::window_start_time() const
 {
-  return update->atime + (double) (update->ntimestep - 1 - update->atimestep) * update->dt;
+  return hardsphere::time_at_step(update, update->ntimestep - 1);
 }
 
 // After a restart file is written, the next window starts from the atoms exactly as a run that

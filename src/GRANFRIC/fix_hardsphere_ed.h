@@ -57,8 +57,6 @@ class FixHardsphereED : public Fix {
   static constexpr double RESTART_FORMAT = 2.0;    // (see write_restart)
 
   FixHardsphereED(class LAMMPS *, int, char **);
-  // error unless a fix hardsphere/ed exists: the styles it calls from its window (kicks, walls)
-  static void require(class LAMMPS *lmp, const char *style, const char *id, const char *what);
   // the fix hardsphere/ed with ID id, or an error in the name of who (a command and its style)
   static FixHardsphereED *lookup(class LAMMPS *lmp, const std::string &id, const char *who);
   ~FixHardsphereED() override;

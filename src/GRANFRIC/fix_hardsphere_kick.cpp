@@ -6,7 +6,7 @@
 
 #include "fix_hardsphere_kick.h"
 
-#include "fix_hardsphere_ed.h"
+#include "hardsphere_host.h"
 #include "fixed_sum.h"
 
 #include "atom.h"
@@ -67,11 +67,11 @@ int FixHardsphereKick::setmask()
 
 void FixHardsphereKick::init()
 {
-  FixHardsphereED::require(lmp, style, id, "applies the kicks at their times inside each step");
+  hardsphere::require_ed(lmp, style, id, "applies the kicks at their times inside each step");
   check_kicks_per_step();
   // the first kick of a new run is the first kick time at or after the current time
   if (!started) {
-    const double now = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+    const double now = hardsphere::time_at_step(update, update->ntimestep);
     next_kick = std::max(next_kick, (long) std::ceil(now * fdr - 1e-9));
     started = true;
   }
@@ -92,7 +92,7 @@ void FixHardsphereKick::check_kicks_per_step() const
                "{:.0f} atoms are {:.6g} atom kicks per step (at most {:g} are allowed): lower f_dr "
                "or the timestep", id, per_step, fdr, update->dt, natoms, per_step * natoms,
                MAX_ATOM_KICKS_PER_STEP);
-  const double t_end = update->atime + (update->laststep - update->atimestep) * update->dt;
+  const double t_end = hardsphere::time_at_step(update, update->laststep);
   if (fdr * std::fabs(t_end) > MAX_KICK_INDEX)
     error->all(FLERR, "Fix hardsphere/kick {}: f_dr = {:g} reaches kick index {:.6g} by the end of "
                "the run at time {:.6g} (at most {:g}: kick times k/f_dr must stay exact)", id, fdr,

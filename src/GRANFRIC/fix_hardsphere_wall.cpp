@@ -6,7 +6,7 @@
 
 #include "fix_hardsphere_wall.h"
 
-#include "fix_hardsphere_ed.h"
+#include "hardsphere_host.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -103,7 +103,7 @@ int FixHardsphereWall::setmask()
 
 void FixHardsphereWall::init()
 {
-  FixHardsphereED::require(lmp, style, id, "processes the collisions with it");
+  hardsphere::require_ed(lmp, style, id, "processes the collisions with it");
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   if (!pair) error->all(FLERR, "Fix hardsphere/wall {} needs a hardsphere pair style", id);
   if (!coeffs.empty() && (int) coeffs.size() != pair->ncoeff())
@@ -166,7 +166,7 @@ double FixHardsphereWall::compute_vector(int n)
   if (n < 2) {
     const granfric::EDWall w = geometry();
     double p, v, a;
-    const double t = update->atime + (update->ntimestep - update->atimestep) * update->dt;
+    const double t = hardsphere::time_at_step(update, update->ntimestep);
     w.motion(t, p, v, a);
     return n == 0 ? p : v;
   }

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+/* ----------------------------------------------------------------------
+   GRANFRIC: what the styles ask of their LAMMPS host alike
+------------------------------------------------------------------------- */
+
+#include "hardsphere_host.h"
+
+#include "error.h"
+#include "fix.h"
+#include "modify.h"
+#include "update.h"
+#include "utils.h"
+
+namespace LAMMPS_NS {
+namespace hardsphere {
+
+  double time_at_step(const Update *update, bigint step)
+  {
+    return update->atime + (double) (step - update->atimestep) * update->dt;
+  }
+
+  void require_ed(LAMMPS *lmp, const char *style, const char *id, const char *what)
+  {
+    for (const auto &f : lmp->modify->get_fix_list())
+      if (utils::strmatch(f->style, "^hardsphere/ed")) return;
+    lmp->error->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
+  }
+
+}    // namespace hardsphere
+}    // namespace LAMMPS_NS
