@@ -49,7 +49,7 @@ for f in "$dst"/*.cpp "$dst"/*.h "$dst"/core/*.cpp "$dst"/core/*.h; do
   rel=${f#"$dst"/}
   [ -e "$repo/src/GRANFRIC/$rel" ] || rm -f "$f"
 done
-[ -e "$dst/granfricplugin.cpp" ] && rm -f "$dst/granfricplugin.cpp"
+rm -f "$dst/granfricplugin.cpp"    # (not part of an in-tree build)
 put "$repo/tools/in-tree/GRANFRIC.cmake" "$top/cmake/Modules/Packages/GRANFRIC.cmake"
 
 # register the package with LAMMPS's CMake (once): a standard package with a module

@@ -15,12 +15,6 @@ ComputeStyle(hardsphere/atom,ComputeHardsphereAtom);
 // clang-format on
 #else
 
-#ifdef COMPUTE_CLASS
-// clang-format off
-ComputeStyle(hardsphere/atom,ComputeHardsphereAtom);
-// clang-format on
-#else
-
 #ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_ATOM_H
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_ATOM_H
 
@@ -47,6 +41,5 @@ class ComputeHardsphereAtom : public Compute {
 
 }    // namespace LAMMPS_NS
 
-#endif
 #endif
 #endif

@@ -15,12 +15,6 @@ ComputeStyle(hardsphere/collisions/local,ComputeHardsphereCollisionsLocal);
 // clang-format on
 #else
 
-#ifdef COMPUTE_CLASS
-// clang-format off
-ComputeStyle(hardsphere/collisions/local,ComputeHardsphereCollisionsLocal);
-// clang-format on
-#else
-
 #ifndef LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_LOCAL_H
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_LOCAL_H
 
@@ -47,6 +41,5 @@ class ComputeHardsphereCollisionsLocal : public Compute {
 
 }    // namespace LAMMPS_NS
 
-#endif
 #endif
 #endif

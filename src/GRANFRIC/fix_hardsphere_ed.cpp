@@ -552,11 +552,10 @@ double FixHardsphereED::window_start_time() const
 // After a restart file is written, the next window starts from the atoms exactly as a run that
 // reads the file does: positions remapped into the box as read_restart remaps them, a new cell
 // grid and new predictions from those positions, the clock anchored at the restart step (see
-// write_restart). The kept event
-// queue would continue with other rounding (its particles' states are lazy, its predictions
-// older), so a run continued from the file would leave the uninterrupted one in the last bits,
-// and chaos would make it another trajectory. This way both are the same, bit for bit, at the
-// cost of one rebuild per restart file.
+// write_restart). The kept event queue would continue with other rounding (its particles'
+// states are lazy, its predictions older), so a run continued from the file would leave the
+// uninterrupted one in the last bits, and chaos would make it another trajectory. This way both
+// are the same, bit for bit, at the cost of one rebuild per restart file.
 void FixHardsphereED::resync_for_restart()
 {
   resync = false;
@@ -805,8 +804,6 @@ void FixHardsphereED::window_gather(double t0, double dt)
   prev_dt = dt;
 }
 
-// the window's statistics (identical on every rank) into the running totals; the collision
-// counts include wall collisions, as the core's sliding, TC-elastic and energy-creating counts do
 // the rows of the core's collision records of the window that began at t0, with the IDs and
 // masks of its particles (by core index)
 template <class TAGS>
@@ -838,6 +835,8 @@ void FixHardsphereED::store_tally(int i, int s, double t0)
   if (p.t_last > -INF) a[T_LAST] = t0 + p.t_last;
 }
 
+// the window's statistics (identical on every rank) into the running totals; the collision
+// counts include wall collisions, as the core's sliding, TC-elastic and energy-creating counts do
 void FixHardsphereED::finish_window(double dt)
 {
   totals[COMM] += totals[STEP_COMM];

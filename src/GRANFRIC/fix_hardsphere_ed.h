@@ -4,18 +4,12 @@
    GRANFRIC: fix hardsphere/ed, the exact event-driven integrator for hard spheres and discs.
 
    fix ID group hardsphere/ed [gravity gx gy gz] [tc t_c] [maxevents N] [parallel domain|gather]
-                              [reach f] [overlap error|allow]
+                              [reach f] [check yes|no] [overlap error|allow]
 
    Each time step is a window in which every collision is processed in exact time order with the
    collision law of the hardsphere pair style (core/event_driven.h); positions, velocities and
    spins are advanced exactly to the end of the step.
 ------------------------------------------------------------------------- */
-
-#ifdef FIX_CLASS
-// clang-format off
-FixStyle(hardsphere/ed,FixHardsphereED);
-// clang-format on
-#else
 
 #ifdef FIX_CLASS
 // clang-format off
@@ -248,6 +242,5 @@ class FixHardsphereED : public Fix {
 
 }    // namespace LAMMPS_NS
 
-#endif
 #endif
 #endif

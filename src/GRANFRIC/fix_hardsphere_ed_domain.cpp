@@ -250,13 +250,16 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       }
     }
   const int nghost = (int) gsrc.size();
+  // the ID of atom a of this window: owned (a < nlocal), or a copy
+  auto tag_of = [&](int a) {
+    return a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal] + AtomRecordAt::TAG];
+  };
   // The atoms of this window in the order of their IDs: slots are given in that order, so that
   // the window does not depend on the order in which LAMMPS stores the atoms (which differs
   // between a run and its continuation from a restart file). LAMMPS reorders atoms only when it
   // reneighbors: the order of the last window usually still holds.
   std::vector<int> &aorder = dom_aorder;
   {
-    auto tag_of = [&](int a) { return a < nlocal ? (long) tag[a] : (long) drecv[gsrc[a - nlocal] + AtomRecordAt::TAG]; };
     const int n = nlocal + nghost;
     // (n indices below n with increasing IDs: the sorted order, each atom once)
     bool same = (int) aorder.size() == n;
@@ -320,8 +323,7 @@ bool FixHardsphereED::window_domain(double t0, double dt)
       twice |= seen[sl] == stamp;
       seen[sl] = stamp;
     };
-    for (int a = 0; a < nlocal; a++) match(a, (long) tag[a]);
-    for (int c = 0; c < nghost; c++) match(nlocal + c, (long) drecv[gsrc[c] + AtomRecordAt::TAG]);
+    for (int a = 0; a < nlocal + nghost; a++) match(a, tag_of(a));
     keep = !twice;
     // the slots of atoms no longer here are emptied first, so every atom finds one if the slots
     // outnumber the atoms

@@ -31,14 +31,17 @@ LMP = os.path.join(ROOT, "tools", "lmp")
 SCENES = os.path.join(HERE, "in.scenes")
 
 
-def lmp(work, np_, env=None, **var):
+def command(np_, log="none", **var):
+    """tools/lmp running in.scenes on np_ ranks with the given variables."""
     cmd = [LMP] + (["-np", str(np_)] if np_ > 1 else []) + ["-in", SCENES, "-screen", "none"]
-    cmd += ["-log", var.pop("log", "none")]
+    cmd += ["-log", log]
     for k, v in var.items():
         cmd += ["-var", k, str(v)]
-    e = dict(os.environ)
-    e.update(env or {})
-    p = subprocess.run(cmd, cwd=work, capture_output=True, text=True, env=e)
+    return cmd
+
+
+def lmp(work, np_, **var):
+    p = subprocess.run(command(np_, **var), cwd=work, capture_output=True, text=True)
     assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
 
 
@@ -194,12 +197,8 @@ def test_restart_across_rank_counts(tmp_path, first, second):
 def run_until_killed(work, np_, wait_for, timeout=120.0, **var):
     """Start a run, wait until file wait_for exists, then kill -9 the whole process group (the
     launcher and every MPI rank), as a crashed node or a queue's time limit would."""
-    cmd = [LMP] + (["-np", str(np_)] if np_ > 1 else []) + ["-in", SCENES, "-screen", "none",
-                                                           "-log", "none"]
-    for k, v in var.items():
-        cmd += ["-var", k, str(v)]
-    p = subprocess.Popen(cmd, cwd=work, process_group=0, stdout=subprocess.DEVNULL,
-                         stderr=subprocess.PIPE)
+    p = subprocess.Popen(command(np_, **var), cwd=work, process_group=0,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     target = os.path.join(work, wait_for)
     t0 = time.monotonic()
     try:
