@@ -6,6 +6,8 @@
 
 #include "fix_hardsphere_ed.h"
 
+#include "hardsphere_domain_window.h"
+#include "hardsphere_gather_window.h"
 #include "hardsphere_host.h"
 
 #include "fix_hardsphere_kick.h"
@@ -42,15 +44,15 @@ static const char cite_granfric[] =
     " note = {Version 0.1, GPL-2.0-or-later}\n"
     "}\n\n";
 
-static constexpr int NPACK = AtomRecordAt::SIZE;    // (doubles per atom in a message)
-
 /* ---------------------------------------------------------------------- */
 
 FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), tc(0.0), maxevents(1000000), tlast(nullptr), pair(nullptr), cum_time(0.0),
-    gamma_bins(0), queue_valid(false), prev_dt(0.0), parallel(DOMAIN), reach(1.2), widen(1.0)
+    gamma_bins(0), gwin(nullptr), dwin(nullptr), parallel(DOMAIN), reach(1.2), widen(1.0)
 {
   if (lmp->citeme) lmp->citeme->add(cite_granfric);
+  gwin = new HardsphereGatherWindow(*this);
+  dwin = new HardsphereDomainWindow(*this);
   gravity[0] = gravity[1] = gravity[2] = 0.0;
   int iarg = 3;
   while (iarg < narg) {
@@ -134,6 +136,8 @@ int FixHardsphereED::choice(const char *keyword, const std::string &value,
 FixHardsphereED::~FixHardsphereED()
 {
   if (copymode) return;
+  delete gwin;
+  delete dwin;
   if (tlast) atom->delete_callback(id, Atom::RESTART);
   atom->delete_callback(id, Atom::GROW);
   memory->destroy(tlast);
@@ -266,15 +270,15 @@ void FixHardsphereED::setup(int vflag)
   const granfric::EDOptions o = core_options();
   bool vibrating = false;
   for (const auto &w : o.walls) vibrating = vibrating || w.vibrating();
-  const bool same = queue_valid && !vibrating && ed.size() > 0 &&
+  const bool same = gwin->kept() && !vibrating && ed.size() > 0 &&
       ed.configured_as(o, atom->ntypes, law_table());
-  if (dom_valid) {
+  if (dwin->kept()) {
     // the core of the last domain window: its next window compares the configuration (with
     // its own cell grid) and every atom itself
-    dom_valid = !vibrating;
+    if (vibrating) dwin->invalidate();
   } else if (!same) {
     configure_core(o);
-    queue_valid = false;
+    gwin->invalidate();
   }
   check_overlaps = true;    // (a kept queue continues an exact trajectory: nothing to check)
 }
@@ -377,12 +381,12 @@ void FixHardsphereED::report_overlaps(bool partial)
     kj = keys[1];
   } else if (ki >= 0) {
     // gathered window: the keys are positions in atom-ID order
-    ki = (long) otags[ki];
-    kj = (long) otags[kj];
+    ki = (long) gwin->tag_of_particle(ki);
+    kj = (long) gwin->tag_of_particle(kj);
   }
   if (n == 0) return;
   if (!allow_overlap) {
-    queue_valid = dom_valid = false;
+    invalidate_windows();
     error->all(FLERR,
                "Fix hardsphere/ed: atoms {} and {} overlap by {:.6g} at the start of the run ({} "
                "overlapping pairs in all). Remove them with delete_atoms overlap, create atoms with "
@@ -450,9 +454,15 @@ void FixHardsphereED::start_core(bool collective)
   }
 }
 
+void FixHardsphereED::invalidate_windows()
+{
+  gwin->invalidate();
+  dwin->invalidate();
+}
+
 void FixHardsphereED::core_failed(const std::exception &e, bool collective)
 {
-  queue_valid = dom_valid = false;
+  invalidate_windows();
   if (collective) error->all(FLERR, "Fix hardsphere/ed: {}", e.what());
   error->one(FLERR, "Fix hardsphere/ed: {}", e.what());
 }
@@ -534,16 +544,6 @@ void FixHardsphereED::wrap_image(imageint &image, const int *dimg)
       (((imageint) (zb + IMGMAX) & IMGMASK) << IMG2BITS);
 }
 
-// what the gathered window writes for core particle s at window time t: position in LAMMPS's
-// frame (less the stored periods), velocity, spin
-void FixHardsphereED::written_state(int s, double t, double *w) const
-{
-  ed.state(s, t, w, w + 3, w + 6);
-  const int8_t *off = &offset[(size_t) s * noff];
-  for (int d = 0; d < noff; d++)
-    if (off[d]) w[d] -= off[d] * wper[d];    // (not periodic: wper = 0 and off = 0)
-}
-
 double FixHardsphereED::window_start_time() const
 {
   return hardsphere::time_at_step(update, update->ntimestep - 1);
@@ -560,12 +560,12 @@ void FixHardsphereED::resync_for_restart()
 {
   resync = false;
   for (int i = 0; i < atom->nlocal; i++) domain->remap(atom->x[i], atom->image[i]);
-  queue_valid = dom_valid = false;
+  invalidate_windows();
 }
 
 /* ----------------------------------------------------------------------
-   one window: gather the system (ordered by atom ID, so the result does not depend on the
-   number of ranks or on atom sorting), run the core, take back the owned atoms
+   one window per step: domain-decomposed (parallel domain on several ranks) unless it has a
+   conflict, else gathered
 ------------------------------------------------------------------------- */
 
 void FixHardsphereED::initial_integrate(int vflag)
@@ -580,7 +580,7 @@ void FixHardsphereED::initial_integrate(int vflag)
   if (parallel == DOMAIN && comm->nprocs > 1) {
     // the shell widens after a conflict (in dense gases collision chains outrun v_max) and
     // narrows slowly while windows pass; the same on every rank (conflicts are global)
-    if (window_domain(t0, dt)) {
+    if (dwin->run(t0, dt)) {
       totals[DOMAIN_WINDOWS] += 1.0;
       widen = MAX(1.0, widen * 0.99);
       finish_window(dt);
@@ -589,237 +589,9 @@ void FixHardsphereED::initial_integrate(int vflag)
     totals[WINDOWS_REDONE] += 1.0;    // a conflict: the whole window again, gathered
     widen = MIN(64.0, 2.0 * widen);
   }
-  window_gather(t0, dt);
+  gwin->run(t0, dt);
   finish_window(dt);
 }
-
-void FixHardsphereED::window_gather(double t0, double dt)
-{
-  const int nlocal = atom->nlocal;
-  double **x = atom->x, **v = atom->v, **omega = atom->omega;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const int *type = atom->type;
-  const tagint *tag = atom->tag;
-
-  // On several ranks every rank packs its atoms and gathers everybody's. On one rank the atom
-  // arrays are the system: they are read in place (no copy).
-  const int nprocs = comm->nprocs, me = comm->me;
-  const int *amask = atom->mask;
-  auto record = [&](int k) {
-    return nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : atom_record(k, t0);
-  };
-  if (nprocs > 1) sendbuf.resize((size_t) nlocal * NPACK);
-  for (int i = 0; i < nlocal && nprocs > 1; i++) atom_record(i, t0).write(&sendbuf[(size_t) i * NPACK]);
-  int total = nlocal * NPACK;
-  if (nprocs == 1) {
-    displs.assign(1, 0);
-  } else {
-    total = allgather(sendbuf, recvbuf);
-  }
-  const int ntotal = total / NPACK;
-
-  // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
-  // step's order usually still holds
-  auto tag_of = [&](int k) {
-    return nprocs > 1 ? (tagint) recvbuf[(size_t) k * NPACK + AtomRecordAt::TAG] : tag[k];
-  };
-  bool same_order = (int) order.size() == ntotal;
-  for (int s = 0; same_order && s < ntotal; s++) same_order = tag_of(order[s]) == otags[s];
-  if (!same_order) {
-    order.resize(ntotal);
-    for (int k = 0; k < ntotal; k++) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
-    // the same atoms as the core's if the sorted tags are the same
-    bool same = same_atoms && (int) otags.size() == ntotal;
-    otags.resize(ntotal);
-    for (int s = 0; s < ntotal; s++) {
-      const tagint t = tag_of(order[s]);
-      same = same && otags[s] == t;
-      otags[s] = t;
-    }
-    same_atoms = same;
-  }
-  // core particle s is this rank's atom order[s] - myfirst if that lies in [0, nlocal)
-  const int myfirst = displs[me] / NPACK;
-
-  for (int d = 0; d < 3; d++) wper[d] = domain->periodicity[d] ? domain->prd[d] : 0.0;
-
-  // Keep the event queue of the previous window when nothing outside this fix touched the
-  // atoms since then: same atoms, and positions, velocities and spins bit for bit what this
-  // fix wrote (every rank sees the same gathered data, so all decide alike). What was written
-  // is recomputed from the core, with the same arithmetic, rather than stored.
-  bool reuse = queue_valid && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
-      (int) offset.size() == noff * ntotal;
-  for (int s = 0; reuse && s < ntotal; s++) {
-    const int k = order[s];
-    // this window's x, v, omega of the atom (in place on one rank)
-    const double *bx, *bv, *bw;
-    if (nprocs == 1) {
-      bx = x[k];
-      bv = v[k];
-      bw = omega[k];
-      reuse = ed.is_body(s, radius[k], rmass[k], type[k]);
-    } else {
-      const double *r = &recvbuf[(size_t) k * NPACK];
-      bx = r + AtomRecordAt::X;
-      bv = r + AtomRecordAt::V;
-      bw = r + AtomRecordAt::W;
-      reuse = ed.is_body(s, r[AtomRecordAt::RADIUS], r[AtomRecordAt::MASS], (int) r[AtomRecordAt::TYPE]);
-    }
-    if (!reuse) break;
-    double w[9];
-    written_state(s, prev_dt, w);
-    for (int d = 0; reuse && d < 3; d++) reuse = bv[d] == w[3 + d] && bw[d] == w[6 + d];
-    // positions: what this fix wrote, or that shifted by one period by Domain::pbc()
-    for (int d = 0; reuse && d < 3; d++) {
-      const double b = bx[d];
-      if (b == w[d]) continue;
-      int8_t &off = offset[(size_t) s * noff + d];
-      if (!domain->periodicity[d] || d >= noff) {
-        reuse = false;
-      } else if (b == w[d] + domain->prd[d] && off > -OFFSET_MAX) {
-        off--;
-      } else if (b == MAX(w[d] - domain->prd[d], domain->boxlo[d]) && off < OFFSET_MAX) {
-        off++;
-      } else {
-        reuse = false;    // (or the offset would leave its range: start afresh)
-      }
-    }
-  }
-  if (reuse) {
-    ed.rebase(prev_dt);
-    ed.set_clock(t0);
-    check_overlaps = false;
-  } else {
-    configure_core(core_options());
-    ed.resize(ntotal);
-    for (int s = 0; s < ntotal; s++) {
-      const AtomRecord r = record(order[s]);
-      auto p = ed.particle(s);
-      p.x = granfric::Vec3(r.x[0], r.x[1], r.x[2]);
-      p.v = granfric::Vec3(r.v[0], r.v[1], r.v[2]);
-      p.w = granfric::Vec3(r.w[0], r.w[1], r.w[2]);
-      p.a = r.radius;
-      p.m = r.mass;
-      p.type = (int) r.type;
-      p.t_last = r.tlast;
-    }
-    same_atoms = true;
-    ed.set_clock(t0);
-    start_core(true);
-    report_overlaps(false);
-    noff = domain->dimension;
-    offset.assign((size_t) ntotal * noff, 0);
-    totals[QUEUE_REBUILDS] += 1.0;
-    totals[STEP_PREDICTED] = (double) ntotal;
-  }
-
-  // kicks of fix hardsphere/kick at their exact times inside the window
-  if (!kicks.empty() || want_rows) {
-    cmask.resize(ntotal);
-    for (int s = 0; s < ntotal; s++) {
-      const int k = order[s];
-      cmask[s] = nprocs > 1 ? (int) recvbuf[(size_t) k * NPACK + AtomRecordAt::MASK] : amask[k];
-    }
-  }
-  if (!kicks.empty()) schedule_kicks(t0, dt, otags, cmask);
-
-  ed.set_accounting(granfric::EDAccounting());
-  ed.record_events(nullptr);
-  clog.clear();
-  ed.record_collisions(want_rows ? &clog : nullptr);
-  try {
-    last = ed.advance_to(dt);
-  } catch (granfric::EventCapError &e) {
-    queue_valid = false;
-    if (e.kind == granfric::EventCapError::CROSSINGS)
-      error->all(FLERR,
-                 "Fix hardsphere/ed: {} cell crossings within step {} exceed maxevents x atoms "
-                 "= {}; atom {} was crossing at speed {:.6g}: atoms move far faster than the system's "
-                 "scale (did a collision law create energy, e.g. hardsphere/jz with kappa_d > "
-                 "kappa_s, or does an atom start much faster than the others?)",
-                 e.n, update->ntimestep, e.n - 1, (tagint) otags[e.i], e.speed);
-    bool creating = false;
-    for (const auto &law : law_table()) creating = creating || law.can_create_energy();
-    error->all(FLERR,
-               "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
-               "last one with atom {} at time {}: {}",
-               (tagint) otags[e.i], e.n, update->ntimestep, maxevents, (tagint) otags[e.j],
-               t0 + e.t,
-               creating ? "a collision law here can create energy (hardsphere/jz with kappa_d > "
-                          "kappa_s), which can run away; use kappa_d <= kappa_s, or raise "
-                          "maxevents if the energy stays bounded"
-                        : "inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
-  } catch (std::exception &e) {
-    core_failed(e, true);
-  }
-  // (every rank ran every collision: rank 0 keeps the rows)
-  if (comm->me != 0) clog.clear();
-  keep_rows(t0, otags, cmask);
-
-  // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the
-  // periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
-  // atom more than half a box outside (a step longer than a box crossing) is wrapped here and
-  // its image flags follow. The same arithmetic on every rank.
-  imageint *image = atom->image;
-  double wlo[3], whi[3];    // more than half a period outside the box (none if not periodic)
-  for (int d = 0; d < 3; d++) {
-    wlo[d] = domain->periodicity[d] ? domain->boxlo[d] - 0.5 * domain->prd[d] : -INF;
-    whi[d] = domain->periodicity[d] ? domain->boxhi[d] + 0.5 * domain->prd[d] : INF;
-  }
-  // core particle s; i: its owned atom, or -1
-  bool offsets_full = false;    // an offset left its range: the next window starts afresh
-  // (the same arithmetic as written_state, with the offsets updated here)
-  auto take_back = [&](int s, int i) {
-    int8_t *stored = &offset[(size_t) s * noff];
-    int dimg[3] = {0, 0, 0};
-    double w[9];
-    ed.state(s, dt, w, w + 3, w + 6);
-    for (int d = 0; d < noff; d++) {
-      int off = stored[d];
-      double y = off ? w[d] - off * wper[d] : w[d];
-      if (y < wlo[d] || y >= whi[d]) {
-        const double L = domain->prd[d];
-        dimg[d] = (int) std::floor((y - domain->boxlo[d]) / L);
-        off += dimg[d];
-        if (off < -OFFSET_MAX || off > OFFSET_MAX) offsets_full = true;
-        stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off));
-        y = off ? w[d] - off * wper[d] : w[d];
-      }
-      w[d] = y;
-    }
-    if (i < 0) return;
-    if (atally) store_tally(i, s, t0);
-    shift_image(image[i], dimg);
-    memcpy(x[i], w, 3 * sizeof(double));
-    memcpy(v[i], w + 3, 3 * sizeof(double));
-    memcpy(omega[i], w + 6, 3 * sizeof(double));
-    if (tlast) set_tlast(i, std::as_const(ed).particle(s).t_last, t0);
-  };
-  for (int s = 0; s < ntotal; s++) {
-    const int i = order[s] - myfirst;
-    take_back(s, i >= 0 && i < nlocal ? i : -1);
-  }
-  queue_valid = !offsets_full;
-  prev_dt = dt;
-}
-
-// the rows of the core's collision records of the window that began at t0, with the IDs and
-// masks of its particles (by core index)
-template <class TAGS>
-void FixHardsphereED::keep_rows(double t0, const TAGS &tags, const std::vector<int> &masks)
-{
-  ed.record_collisions(nullptr);
-  rows.clear();
-  for (const auto &c : clog) {
-    const bool wall = c.j < 0;
-    rows.push_back({t0 + c.t, {(tagint) tags[c.i], wall ? 0 : (tagint) tags[c.j]},
-                    {masks[c.i], wall ? 0 : masks[c.j]}, wall ? -c.j : 0, c});
-  }
-}
-
-// (the domain windows' instance)
-template void FixHardsphereED::keep_rows(double, const std::vector<long> &, const std::vector<int> &);
 
 // owned atom i is core particle s of the window that began at t0: its tallies of the step
 void FixHardsphereED::store_tally(int i, int s, double t0)
@@ -872,16 +644,9 @@ double FixHardsphereED::compute_vector(int n)
 
 double FixHardsphereED::memory_usage()
 {
-  auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
   return (tlast ? (double) atom->nmax * sizeof(double) : 0.0) +
-      (atally ? (double) atom->nmax * NTALLY * sizeof(double) : 0.0) + (double) ed.memory_bytes() + bytes(sendbuf) +
-      bytes(recvbuf) + bytes(order) + bytes(otags) + bytes(offset) +
-      bytes(cmask) + bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) +
-      bytes(hrecv) + bytes(gtag) + bytes(gmask) + bytes(kick_tags) + bytes(dom_slot) +
-      bytes(dom_free) + bytes(lslot) + bytes(sowned) + bytes(sowned_prev) + bytes(sseen) +
-      bytes(dom_sent) + bytes(dom_inslot) + bytes(dom_evlist) + bytes(dom_cslot) + bytes(dom_watch) +
-      bytes(dom_gsrc) + bytes(dom_start) + bytes(dom_fill) + bytes(dom_gshift) + bytes(dom_tstar) +
-      bytes(dom_pub);
+      (atally ? (double) atom->nmax * NTALLY * sizeof(double) : 0.0) + (double) ed.memory_bytes() +
+      gwin->memory_usage() + dwin->memory_usage();
 }
 
 // per-atom arrays: the last collision times of the TC model (tc > 0) and the tallies (when asked)

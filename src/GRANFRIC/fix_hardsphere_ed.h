@@ -130,29 +130,21 @@ class FixHardsphereED : public Fix {
   int gamma_bins;
   double totals[NVECTOR];                // running totals (restart)
 
-  // gathered system (every rank runs the whole window; see doc)
-  std::vector<double> sendbuf, recvbuf;
-  std::vector<int> counts, displs;
-  std::vector<int> order;                       // index in recvbuf (or the atom arrays) by tag
-  std::vector<tagint> otags;                    // the tags in that order (= the core's order)
-  // event queue kept across windows (see initial_integrate)
-  bool queue_valid;
-  double prev_dt;
-  bool same_atoms = false;                      // otags unchanged since the core's last start
+  // the windows: gathered (serial, parallel gather, and the redo of a domain window that had a
+  // conflict) and domain-decomposed; both run the one core
+  friend class HardsphereGatherWindow;
+  friend class HardsphereDomainWindow;
+  class HardsphereGatherWindow *gwin;
+  class HardsphereDomainWindow *dwin;
+  void invalidate_windows();             // the core no longer holds what a window left
+  std::vector<int> counts, displs;       // each rank's part of the last allgather
   // a restart file was written: the next window starts afresh from the atoms as the file holds
   // them, as a run continued from that file does (see resync_for_restart)
   bool resync = false;
-  // periods between the core's frame and LAMMPS's, per core particle and dimension (noff),
-  // within +-OFFSET_MAX: a window that would go beyond ends with the queue dropped, so the next
-  // one starts afresh from LAMMPS's positions with the offsets back at 0
-  std::vector<int8_t> offset;
-  static constexpr int OFFSET_MAX = 100;
-  int noff = 3;
-  double wper[3] = {0, 0, 0};                   // period per offset (0: not periodic)
   std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window
   std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window
-  std::vector<int> cmask;                       // atom masks in core order
 
+  bool check_windows = true;             // keyword check: redo a domain window that has a conflict
   int parallel;                          // GATHER or DOMAIN
   double reach;                          // ghost shell safety factor on v_max dt
   double widen;                          // adaptive factor on top of reach (>= 1)
@@ -170,14 +162,9 @@ class FixHardsphereED : public Fix {
     if (dimg[0] | dimg[1] | dimg[2]) wrap_image(image, dimg);
   }
   static void wrap_image(imageint &image, const int *dimg);
-  void window_gather(double t0, double dt);
-  bool window_domain(double t0, double dt);    // false: a conflict, nothing was changed
   void finish_window(double dt);
-  void written_state(int s, double t, double *w) const;
   AtomRecord atom_record(int i, double t0) const;    // owned atom i, window start t0
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
-  template <class T>
-  void sum_over_ranks(std::vector<T> &v, MPI_Datatype type) const;
   bool check_overlaps = false;
   bool allow_overlap = false;            // keyword overlap allow: overlapping pairs separate
   void report_overlaps(bool partial);
@@ -196,38 +183,6 @@ class FixHardsphereED : public Fix {
   void schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
                       const std::vector<int> &masks);
 
-  // domain-decomposed windows (fix_hardsphere_ed_domain.cpp)
-  std::vector<granfric::EDEvent> history;
-  std::vector<double> dsend, drecv, hsend, hrecv;
-  std::vector<long> gtag;                       // tags of the window's particles (-1: empty slot)
-  std::vector<int> gmask;                       // their masks (0: empty slot)
-  // the core kept from the last domain window: its slots are matched to atoms by ID, and only
-  // atoms whose state arrives different from the slot's are predicted afresh
-  std::vector<int> dom_aorder;    // the atoms of a domain window in the order of their IDs
-  bool check_windows = true;    // keyword check: redo a domain window that has a conflict
-  bool dom_valid = false;
-  double dom_dt = 0.0;
-  double dom_lo[3] = {0, 0, 0}, dom_hi[3] = {0, 0, 0};    // the kept cell grid (open dimensions)
-  bool dom_whole[3] = {false, false, false};
-  std::vector<int> dom_slot;                    // slot of each atom ID, -1: none
-  std::vector<int> dom_free;                    // empty slots
-  std::vector<int> lslot;                       // slot of each owned atom (this window)
-  std::vector<uint8_t> sowned, sowned_prev;     // slot owned in this / the last window
-  std::vector<int> sseen;                       // slot matched in this window (stamp)
-  // scratch of every window, kept to spare their allocation and clearing: atoms sent (flags
-  // and list), the slot of each atom, the copies' slots, their records in drecv and image
-  // shifts, the watched slots (copies, then sent atoms) and each slot's place among them (-1:
-  // none), the events of each watched slot (evlist from start), influence times, where each
-  // copy's history was received
-  std::vector<char> dom_sent;
-  std::vector<int> dom_sendlist, dom_wlist, dom_widx, dom_rm;    // (dom_rm: slots to empty)
-  std::vector<int> dom_inslot, dom_evlist, dom_cslot, dom_gsrc, dom_start, dom_fill;
-  std::vector<int> dom_gshift;                  // (3 per copy)
-  std::vector<double> dom_tstar;
-  std::vector<long> dom_pub;
-  std::vector<uint8_t> dom_watch;               // slots whose events are recorded
-  int dom_stamp = 0;
-  std::vector<tagint> kick_tags;
   // per-collision rows (request_collision_rows): the core's records of the window, and the rows
   bool want_rows = false;
   double **atally = nullptr;                    // per-atom tallies (NTALLY per atom), or null
@@ -236,8 +191,19 @@ class FixHardsphereED : public Fix {
   void store_tally(int i, int s, double t0);
   std::vector<granfric::EDCollisionRecord> clog;
   std::vector<CollisionRow> rows;
+  // the rows of the core's collision records of the window that began at t0, with the IDs and
+  // masks of its particles (by core index)
   template <class TAGS>
-  void keep_rows(double t0, const TAGS &tags, const std::vector<int> &masks);
+  void keep_rows(double t0, const TAGS &tags, const std::vector<int> &masks)
+  {
+    ed.record_collisions(nullptr);
+    rows.clear();
+    for (const auto &c : clog) {
+      const bool wall = c.j < 0;
+      rows.push_back({t0 + c.t, {(tagint) tags[c.i], wall ? 0 : (tagint) tags[c.j]},
+                      {masks[c.i], wall ? 0 : masks[c.j]}, wall ? -c.j : 0, c});
+    }
+  }
 };
 
 }    // namespace LAMMPS_NS

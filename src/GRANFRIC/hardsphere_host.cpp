@@ -6,11 +6,14 @@
 
 #include "hardsphere_host.h"
 
+#include "domain.h"
 #include "error.h"
 #include "fix.h"
 #include "modify.h"
 #include "update.h"
 #include "utils.h"
+
+#include <limits>
 
 namespace LAMMPS_NS {
 namespace hardsphere {
@@ -25,6 +28,18 @@ namespace hardsphere {
     for (const auto &f : lmp->modify->get_fix_list())
       if (utils::strmatch(f->style, "^hardsphere/ed")) return;
     lmp->error->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
+  }
+
+  FarWrap::FarWrap(const Domain *domain)
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int d = 0; d < 3; d++) {
+      const bool p = domain->periodicity[d];
+      lo[d] = p ? domain->boxlo[d] - 0.5 * domain->prd[d] : -inf;
+      hi[d] = p ? domain->boxhi[d] + 0.5 * domain->prd[d] : inf;
+      boxlo[d] = domain->boxlo[d];
+      L[d] = domain->prd[d];
+    }
   }
 
 }    // namespace hardsphere

@@ -9,7 +9,10 @@
 
 #include "lmptype.h"
 
+#include <cmath>
+
 namespace LAMMPS_NS {
+class Domain;
 class LAMMPS;
 class Update;
 
@@ -21,6 +24,30 @@ namespace hardsphere {
 
   // an error unless a fix hardsphere/ed is defined: fix `style` `id` needs it, because it `what`
   void require_ed(LAMMPS *lmp, const char *style, const char *id, const char *what);
+
+  // Far-out coordinates at the end of a step. LAMMPS wraps an atom back into a periodic box
+  // when it reneighbors; an atom more than half a period outside the box (a step longer than a
+  // box crossing) is wrapped by the window itself, by whole periods, and its image flags follow.
+  class FarWrap {
+   public:
+    explicit FarWrap(const Domain *domain);
+    // the periods by which coordinate y of dimension d lies outside the box: 0 unless it lies
+    // more than half a period outside (always 0 in a dimension that is not periodic)
+    int periods(int d, double y) const
+    {
+      if (!(y < lo[d] || y >= hi[d])) return 0;
+      return (int) std::floor((y - boxlo[d]) / L[d]);
+    }
+    // y wrapped into the box if it lies that far out; k: the periods taken off
+    void apply(int d, double &y, int &k) const
+    {
+      k = periods(d, y);
+      if (k) y -= k * L[d];
+    }
+
+   private:
+    double lo[3], hi[3], boxlo[3], L[3];
+  };
 
 }    // namespace hardsphere
 }    // namespace LAMMPS_NS

@@ -1,0 +1,877 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+// clang-format off
+/* ----------------------------------------------------------------------
+   GRANFRIC: fix hardsphere/ed, domain-decomposed windows (keyword parallel domain).
+
+   Each rank runs the window for its owned atoms plus copies ("ghosts", not LAMMPS's ghosts) of
+   every other atom within a shell of width W = 2 D + 2 a_max around its owned atoms, where D
+   bounds the path any atom travels in the window. Whether the result is exact is then checked,
+   not assumed:
+   - guard: every owned atom's path (an upper bound from its exact flights) stayed <= D, so
+     every atom that touched an owned atom was in the shell;
+   - history: a ghost influenced the owned atoms up to a time t* (it collided with one, or with
+     a ghost that did before that one's own influence, ...); its collisions up to t* (partners,
+     times, velocities and spins after each) must equal those its owner computed.
+   If the earliest wrong event anywhere belonged to an owned atom, its partner was a ghost whose
+   history up to that time differs from its owner's (which is right up to then) - detected; or a
+   partner was missing - impossible after the guard. So when every rank passes, every owned
+   trajectory is the exact one. Otherwise the whole window is redone gathered (every rank runs
+   the whole system), which is exact by construction; the fix counts both.
+------------------------------------------------------------------------- */
+
+#include "hardsphere_domain_window.h"
+
+#include "fix_hardsphere_ed.h"
+#include "fix_hardsphere_kick.h"
+#include "hardsphere_gather_window.h"
+#include "hardsphere_host.h"
+#include "pair_hardsphere.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <type_traits>
+#include <utility>
+
+using namespace LAMMPS_NS;
+using granfric::EDEvent;
+using granfric::INF;
+using granfric::Vec3;
+
+static constexpr int NPACK = AtomRecordAt::SIZE;    // (doubles per atom in a message)
+// per event of a published history: window time, partner tag (-1 - k: wall k), v and omega after
+static constexpr int NEV = 8;
+
+namespace {
+// the shift (in periods) that brings coordinate x into [lo, hi] in a dimension, or false
+bool image_in(double x, double lo, double hi, bool periodic, double L, int &s)
+{
+  for (int k : {0, -1, 1}) {
+    if (k != 0 && !periodic) continue;
+    const double y = x + k * L;
+    if (y >= lo && y <= hi) {
+      s = k;
+      return true;
+    }
+  }
+  return false;
+}
+double dot3(const double *a, const double *b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// squared speed of the core's motion (x-y in 2d)
+template <int DIM>
+double speed2(const double *v)
+{
+  return DIM == 2 ? v[0] * v[0] + v[1] * v[1] : dot3(v, v);
+}
+
+// v summed over all ranks, element by element (every rank holds the same length)
+template <class T>
+void sum_over_ranks(std::vector<T> &v, MPI_Datatype type, MPI_Comm world)
+{
+  if (v.empty()) return;
+  std::vector<T> sum(v.size());
+  MPI_Allreduce(v.data(), sum.data(), (int) v.size(), type, MPI_SUM, world);
+  v.swap(sum);
+}
+}    // namespace
+
+HardsphereDomainWindow::HardsphereDomainWindow(FixHardsphereED &f) :
+    Pointers(f.lmp), fix(f), ed(f.ed)
+{
+}
+
+bool HardsphereDomainWindow::run(double t0, double dt)
+{
+  nlocal = atom->nlocal;
+  dim = domain->dimension;
+  step = dt;
+  base = fix.core_options();
+  bound_reach(dt);
+  make_regions();
+  send_copies(t0);
+  find_copies();
+  order_by_id();
+  load_core(t0);
+  watch_events();
+  bool fail = !advance(t0, dt);
+  fail = fail || !guard(dt);
+  ed.track_fast(INF);
+  influence_times();
+  publish_histories();
+  const int conflicts = fail ? 0 : compare_histories(dt);
+  int local[2] = {conflicts, fail ? 1 : 0}, global[2];
+  MPI_Allreduce(local, global, 2, MPI_INT, MPI_SUM, world);
+  double *totals = fix.totals;
+  totals[FixHardsphereED::STEP_CONFLICTS] = (double) (global[0] + global[1]);
+  totals[FixHardsphereED::CONFLICTS] += totals[FixHardsphereED::STEP_CONFLICTS];
+  // (check no keeps a conflicting window: a wrong result, to show what the check is for)
+  if (global[0] + global[1] > 0 && fix.check_windows) {
+    for (size_t f = 0; f < fix.kicks.size(); f++) fix.kicks[f]->rewind(kick_from[f]);
+    fix.gwin->invalidate();
+    valid = false;
+    return false;
+  }
+  commit(t0, dt);
+  sum_statistics();
+  fix.gwin->invalidate();
+  // the core is kept for the next window (it then starts at this window's end)
+  valid = true;
+  fix.keep_rows(t0, stag, smask);    // (the collisions this rank booked)
+  last_dt = dt;
+  sowned_prev.assign(sowned.begin(), sowned.end());
+  return true;
+}
+
+// ------------------------------------------------ the reach D and the shell W
+// speed bound: all of an atom's kinetic energy as translation, plus what a vibrating wall can
+// add (twice its largest speed); one pass over the atoms also gives this rank's bounding box,
+// for the regions, and the largest atom ID (slots are looked up by ID)
+void HardsphereDomainWindow::bound_reach(double dt)
+{
+  const double *xa = nlocal > 0 ? atom->x[0] : nullptr, *va = nlocal > 0 ? atom->v[0] : nullptr;
+  const double *wa = nlocal > 0 ? atom->omega[0] : nullptr;
+  const double *radius = atom->radius;
+  const tagint *tag = atom->tag;
+  const double q = fix.pair->shape_factor();
+  double mx[2] = {0.0, 0.0};
+  for (int d = 0; d < 3; d++) {
+    mybb[d] = d < dim ? INF : 0.0;    // (nothing moves in z in 2d)
+    mybb[3 + d] = d < dim ? -INF : 0.0;
+  }
+  // (LAMMPS keeps x, v and omega contiguous, 3 per atom: the pass indexes them directly; in 2d
+  // the core moves in x-y and spins about z only: the other components play no part. The
+  // running extremes live in locals, which the compiler keeps in registers)
+  auto bound_pass = [&](auto dims) {
+    constexpr int DIM = decltype(dims)::value;
+    double e2 = 0.0, amax = 0.0, lo[3] = {INF, INF, INF}, hi[3] = {-INF, -INF, -INF};
+    long tmax = 0;
+    for (int i = 0; i < nlocal; i++) {
+      const double *xi = xa + 3 * i, *vi = va + 3 * i, *wi = wa + 3 * i;
+      const double w2 = DIM == 2 ? wi[2] * wi[2] : dot3(wi, wi);
+      e2 = std::max(e2, speed2<DIM>(vi) + q * radius[i] * radius[i] * w2);
+      amax = std::max(amax, radius[i]);
+      for (int d = 0; d < DIM; d++) {
+        lo[d] = std::min(lo[d], xi[d]);
+        hi[d] = std::max(hi[d], xi[d]);
+      }
+      tmax = std::max(tmax, (long) tag[i]);
+    }
+    mx[0] = e2;
+    mx[1] = amax;
+    for (int d = 0; d < DIM; d++) {
+      mybb[d] = lo[d];
+      mybb[3 + d] = hi[d];
+    }
+    maxtag = tmax;
+  };
+  if (dim == 2)
+    bound_pass(std::integral_constant<int, 2>());
+  else
+    bound_pass(std::integral_constant<int, 3>());
+  mx[0] = std::sqrt(mx[0]);    // (the root of the largest: the largest root, exactly)
+  MPI_Allreduce(mx, gmx, 2, MPI_DOUBLE, MPI_MAX, world);
+  vwall = 0.0;
+  for (const auto &w : base.walls)
+    if (w.vibrating()) vwall = std::max(vwall, w.sine ? w.A * w.omega : 4.0 * w.A * w.omega / M_PI);
+  g = norm(base.gravity);
+  D = fix.reach * fix.widen * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
+  W = 2.0 * D + 2.0 * gmx[1] * (1.0 + 1e-12) + 1e-12 * D;
+}
+
+// ------------------------------------------------ every rank's region (owned box + W)
+void HardsphereDomainWindow::make_regions()
+{
+  const int nprocs = comm->nprocs;
+  bb.resize(6 * nprocs);
+  MPI_Allgather(mybb, 6, MPI_DOUBLE, bb.data(), 6, MPI_DOUBLE, world);
+  reg.resize(nprocs);
+  for (int r = 0; r < nprocs; r++)
+    for (int d = 0; d < 3; d++) {
+      Region &R = reg[r];
+      R.lo[d] = bb[6 * r + d] - W;
+      R.hi[d] = bb[6 * r + 3 + d] + W;
+      R.whole[d] = false;
+      if (d >= dim) {
+        R.whole[d] = true;
+      } else if (domain->periodicity[d]) {
+        R.whole[d] = R.hi[d] - R.lo[d] >= domain->prd[d];
+      } else {
+        R.lo[d] = std::max(R.lo[d], domain->boxlo[d] - W);
+        R.hi[d] = std::min(R.hi[d], domain->boxhi[d] + W);
+      }
+    }
+}
+
+// is x inside region R (at the image shift s, in periods per dimension)?
+bool HardsphereDomainWindow::inside(const Region &R, const double *x, int *s) const
+{
+  for (int d = 0; d < 3; d++) {
+    s[d] = 0;
+    if (R.whole[d]) continue;
+    if (!image_in(x[d], R.lo[d], R.hi[d], domain->periodicity[d], domain->prd[d], s[d]))
+      return false;
+  }
+  return true;
+}
+
+// ------------------------------------------------ send the atoms others need
+// (the test of inside() without the image shift: per other rank with atoms, the dimensions its
+// region does not cover whole, each with its interval and period, 0 if not periodic. A
+// periodic coordinate is brought to the interval's period by one shift either way, as inside()
+// tries x - L, x and x + L; the span has a margin of rounding, so that an atom the receiver's
+// inside() accepts is always sent (it drops what it does not need). One test at a time over
+// all atoms: straight-line code per atom)
+void HardsphereDomainWindow::send_copies(double t0)
+{
+  struct Test {
+    int nd = 0, dims[3];
+    double lo[3], span[3], L[3];
+  };
+  std::vector<Test> tests;
+  for (int r = 0; r < comm->nprocs; r++) {
+    if (r == comm->me || bb[6 * r] > bb[6 * r + 3]) continue;
+    Test T;
+    for (int d = 0; d < 3; d++) {
+      if (reg[r].whole[d]) continue;
+      T.dims[T.nd] = d;
+      T.lo[T.nd] = reg[r].lo[d];
+      T.L[T.nd] = domain->periodicity[d] ? domain->prd[d] : 0.0;
+      T.span[T.nd] = reg[r].hi[d] - reg[r].lo[d] +
+          1e-9 * (std::fabs(reg[r].lo[d]) + std::fabs(reg[r].hi[d]) + T.L[T.nd]);
+      T.nd++;
+    }
+    tests.push_back(T);
+  }
+  const double *xa = nlocal > 0 ? atom->x[0] : nullptr;
+  sent.assign(nlocal, 0);
+  char *sd = sent.data();
+  for (const Test &T : tests)
+    for (int i = 0; i < nlocal; i++) {
+      bool in = true;
+      for (int j = 0; j < T.nd; j++) {
+        double u = xa[3 * i + T.dims[j]] - T.lo[j];
+        u -= u >= T.L[j] ? T.L[j] : 0.0;    // (L = 0: no shift, and u >= 0 is required)
+        u += u < 0.0 ? T.L[j] : 0.0;
+        in &= u >= 0.0 && u <= T.span[j];
+      }
+      sd[i] |= (char) in;
+    }
+  sendlist.clear();    // (ascending)
+  for (int i = 0; i < nlocal; i++)
+    if (sent[i]) sendlist.push_back(i);
+  const size_t nsend = sendlist.size();
+  dsend.resize(nsend * NPACK);    // (every entry is set below)
+  for (size_t k = 0; k < nsend; k++) fix.atom_record(sendlist[k], t0).write(&dsend[k * NPACK]);
+  fix.allgather(dsend, drecv);
+}
+
+// ------------------------------------------------ the copies this rank needs
+// each copy's record in drecv and its image shift
+void HardsphereDomainWindow::find_copies()
+{
+  const Region &R = reg[comm->me];
+  gsrc.clear();
+  gshift.clear();
+  int s3[3];
+  if (nlocal > 0)
+    for (int p = 0; p < comm->nprocs; p++) {
+      if (p == comm->me) continue;
+      for (int k = fix.displs[p]; k < fix.displs[p] + fix.counts[p]; k += NPACK) {
+        if (!inside(R, &drecv[k + AtomRecordAt::X], s3)) continue;
+        gsrc.push_back(k);
+        gshift.insert(gshift.end(), s3, s3 + 3);
+      }
+    }
+  nghost = (int) gsrc.size();
+  for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k + AtomRecordAt::TAG]);
+}
+
+// the ID of atom a of this window: owned (a < nlocal), or a copy
+long HardsphereDomainWindow::tag_of(int a) const
+{
+  return a < nlocal ? (long) atom->tag[a] : (long) drecv[gsrc[a - nlocal] + AtomRecordAt::TAG];
+}
+
+// The atoms of this window in the order of their IDs: slots are given in that order, so that
+// the window does not depend on the order in which LAMMPS stores the atoms (which differs
+// between a run and its continuation from a restart file). LAMMPS reorders atoms only when it
+// reneighbors: the order of the last window usually still holds.
+void HardsphereDomainWindow::order_by_id()
+{
+  const int n = nlocal + nghost;
+  // (n indices below n with increasing IDs: the sorted order, each atom once)
+  bool same = (int) aorder.size() == n;
+  for (int k = 0; same && k < n; k++)
+    same = aorder[k] < n && (k == 0 || tag_of(aorder[k - 1]) < tag_of(aorder[k]));
+  if (same) return;
+  aorder.resize(n);
+  for (int a = 0; a < n; a++) aorder[a] = a;
+  std::sort(aorder.begin(), aorder.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
+}
+
+// atom a of this window: an owned atom (a < nlocal) from LAMMPS, a copy as received, at the
+// periodic image inside this rank's region
+AtomRecord HardsphereDomainWindow::record_of(int a, double t0) const
+{
+  if (a < nlocal) return fix.atom_record(a, t0);
+  AtomRecord r = AtomRecord::read(&drecv[gsrc[a - nlocal]]);
+  const int *sh = &gshift[3 * (a - nlocal)];
+  for (int d = 0; d < 3; d++) r.x[d] += sh[d] * domain->prd[d];
+  return r;
+}
+
+// ------------------------------------------------ the local system: kept, or afresh
+// The core of the last window is kept when its cell grid still covers this window's region and
+// nothing else changed; its slots are matched to this window's atoms by ID. Each atom is taken
+// as it arrives (its owner's state, or LAMMPS's for owned atoms); one whose state differs from
+// its slot's by more than rounding is predicted afresh (ed.changed), one that differs by
+// rounding only takes the state and keeps its predictions (ed.nudge), slots of atoms no longer
+// here are emptied, new atoms fill empty slots. Owned atoms arrive as this rank left them, so
+// mostly only the copies that lacked a partner, or entered the region, are predicted again.
+// The result is the exact trajectory of the same system, as a fresh start would give it, up to
+// rounding.
+void HardsphereDomainWindow::load_core(double t0)
+{
+  granfric::EDOptions o = base;
+  // every rank takes the cell width of the whole system (the same number of cells in a
+  // dimension a rank covers whole, so that copies cross cells where their owners do: fewer
+  // rounding differences between them), not that of its region with its empty margins
+  // (cells: a kept core takes its copies' states from their owners by nudge(), which lists
+  // refuse)
+  o.neighbours = granfric::EDOptions::CELLS;
+  if (dim == 2 && domain->prd[0] * domain->prd[1] > 0.0)
+    o.cell_width = granfric::EventDriven::auto_cell_width(
+        2, 2.0 * gmx[1] * (1.0 + 1e-10), (double) atom->natoms / (domain->prd[0] * domain->prd[1]));
+  repredicted = owned_changed = 0;
+  keep = can_keep(o);
+  if (keep)
+    keep_core(t0);
+  else
+    fresh_core(o, t0);
+}
+
+// whether the last window's core covers this window (its grid holds the region, its slots
+// suffice); sets every atom's slot (inslot) and, with the grid kept, o's grid
+bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
+{
+  const Region &R = reg[comm->me];
+  bool ok = valid && gmx[1] <= ed.cell_radius() && nlocal + nghost > 0;
+  for (int d = 0; d < 3 && ok; d++) {
+    ok = R.whole[d] == grid_whole[d];
+    if (!ok || R.whole[d] || !domain->periodicity[d]) continue;
+    ok = R.lo[d] >= grid_lo[d] && R.hi[d] <= grid_hi[d];
+    o.lo[d] = grid_lo[d];
+    o.hi[d] = grid_hi[d];
+    o.periodic[d] = false;
+    o.open[d] = true;
+  }
+  ok = ok && ed.configured_as(o, atom->ntypes, fix.law_table());
+  inslot.resize(nlocal + nghost);    // (set for every atom before use)
+  if (!ok) return false;
+  if ((long) slot_of_tag.size() <= maxtag) slot_of_tag.resize(maxtag + 1, -1);
+  if (++stamp == INT32_MAX) return false;
+  // (locals: stores through int pointers could otherwise alias the stamp)
+  const int st = stamp, *slot = slot_of_tag.data();
+  int *seen = sseen.data(), *ins = inslot.data();
+  bool twice = false;    // (an atom twice cannot happen: owned once, copied once)
+  long matched = 0;      // atoms that have a slot
+  for (int a = 0; a < nlocal + nghost; a++) {
+    const int sl = slot[tag_of(a)];
+    ins[a] = sl;
+    if (sl < 0) continue;
+    matched++;
+    twice |= seen[sl] == st;
+    seen[sl] = st;
+  }
+  // the slots of atoms no longer here are emptied first, so every atom finds one if the slots
+  // outnumber the atoms
+  if (twice || nlocal + nghost > ed.size()) return false;
+  // The slots of atoms no longer here, in ascending order. They are nearly always the last
+  // window's copies (an owned atom that leaves the rank stays near it, a copy here): those are
+  // looked at first, and all slots only if that does not find as many as there are occupied
+  // slots without an atom.
+  const long unmatched = (long) (ed.size() - free_slots.size()) - matched;
+  rm.clear();
+  for (int sl : cslot)
+    if (stag[sl] >= 0 && seen[sl] != st) rm.push_back(sl);
+  if ((long) rm.size() == unmatched) {
+    std::sort(rm.begin(), rm.end());
+  } else {
+    rm.clear();
+    for (int sl = 0; sl < ed.size(); sl++)
+      if (stag[sl] >= 0 && seen[sl] != st) rm.push_back(sl);
+  }
+  return true;
+}
+
+// Rounding: a copy's state as its owner computed it differs in the last bits from the same
+// atom's state as this rank computed it (other cell grids advance it at other times; copies
+// across a periodic boundary sit at shifted coordinates), and chaos amplifies that within a
+// window (measured, 2 ranks, N = 99856, fraction 0.3: all but 0.1 % of such differences below
+// 1e-12 of the values' scales, none above 1e-11; at 0.05 77 % below 1e-12, up to 1e-8). A copy
+// that lacked a partner differs by 1e-2 or more. Within ROUND of the scales the slot keeps its
+// predictions: they are those of the same trajectory, as when a cell crossing re-rounds a
+// state.
+bool HardsphereDomainWindow::rounding_only(int sl, const AtomRecord &r) const
+{
+  constexpr double ROUND = 1e-12;
+  const double vround = ROUND * (gmx[0] + 2.0 * vwall + g * step);
+  const double wround = vround / std::max(gmx[1], 1e-300);
+  const auto p = std::as_const(ed).particle(sl);
+  if (p.a != r.radius || p.m != r.mass || p.type != (int) r.type) return false;
+  double xs[3], vs[3], ws[3];
+  ed.state(sl, 0.0, xs, vs, ws);
+  for (int d = 0; d < dim; d++)
+    if (std::fabs(r.x[d] - xs[d]) > ROUND * (std::fabs(xs[d]) + r.radius) ||
+        std::fabs(r.v[d] - vs[d]) > vround)
+      return false;
+  for (int d = 0; d < 3; d++)
+    if (std::fabs(r.w[d] - ws[d]) > wround) return false;
+  return true;
+}
+
+// the kept core, its slots matched to this window's atoms (can_keep)
+void HardsphereDomainWindow::keep_core(double t0)
+{
+  double *xa = nlocal > 0 ? atom->x[0] : nullptr, *va = nlocal > 0 ? atom->v[0] : nullptr;
+  double *wa = nlocal > 0 ? atom->omega[0] : nullptr;
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *type = atom->type, *mask = atom->mask;
+  ed.rebase(last_dt);
+  ed.set_clock(t0);
+  for (int sl : rm) {
+    ed.remove(sl);    // an atom no longer in this rank's region
+    slot_of_tag[stag[sl]] = -1;
+    stag[sl] = -1;
+    smask[sl] = 0;
+    free_slots.push_back(sl);
+  }
+  cslot.clear();
+  sowned.assign(ed.size(), 0);
+  lslot.resize(nlocal);
+  const uint8_t *prev = sowned_prev.data();
+  for (int a : aorder) {
+    int sl = inslot[a];
+    const bool own = a < nlocal;
+    const bool was_mine = own && sl >= 0 && prev[sl];
+    // an atom this rank owned and wrote back: compared in place (most of them are unchanged)
+    if (was_mine) {
+      if (ed.holds(sl, 0.0, xa + 3 * a, va + 3 * a, wa + 3 * a, radius[a], rmass[a], type[a])) {
+        smask[sl] = mask[a];
+        sowned[sl] = 1;
+        lslot[a] = sl;
+        continue;
+      }
+      owned_changed++;    // something other than this fix changed it
+    }
+    const AtomRecord in = record_of(a, t0);
+    // (does the slot hold this state bit for bit, at window time 0? or the same trajectory
+    // with other rounding, as its owner computed it on another cell grid: then the state is
+    // taken and the slot's predictions stand)
+    const bool same = sl >= 0 && !was_mine &&
+        (ed.holds(sl, 0.0, in.x, in.v, in.w, in.radius, in.mass, (int) in.type) ||
+         (rounding_only(sl, in) && ed.nudge(sl, in.x, in.v, in.w)));
+    if (sl < 0) {
+      sl = free_slots.back();
+      free_slots.pop_back();
+      slot_of_tag[(long) in.tag] = sl;
+      stag[sl] = (long) in.tag;
+    }
+    auto ps = ed.particle(sl);
+    // the last-collision time as its owner has it, unless this rank owned the atom already
+    if (!was_mine) ps.t_last = in.tlast;
+    if (!same) {
+      ps.x = Vec3(in.x[0], in.x[1], in.x[2]);
+      ps.v = Vec3(in.v[0], in.v[1], in.v[2]);
+      ps.w = Vec3(in.w[0], in.w[1], in.w[2]);
+      ps.a = in.radius;
+      ps.m = in.mass;
+      ps.type = (int) in.type;
+      ed.changed(sl);
+      repredicted++;
+    }
+    smask[sl] = (int) in.mask;
+    if (own) {
+      sowned[sl] = 1;
+      lslot[a] = sl;
+    } else {
+      cslot.push_back(sl);
+    }
+  }
+}
+
+// afresh: the atoms in slots 0..n-1 in the order of their IDs, then empty slots for later
+// windows; the cell grid covers this window's region and a margin W
+void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
+{
+  const Region &R = reg[comm->me];
+  cslot.clear();
+  for (int d = 0; d < 3; d++) {
+    grid_whole[d] = R.whole[d];
+    if (R.whole[d] || !domain->periodicity[d]) continue;
+    grid_lo[d] = R.lo[d] - W;
+    grid_hi[d] = R.hi[d] + W;
+    o.lo[d] = grid_lo[d];
+    o.hi[d] = grid_hi[d];
+    o.periodic[d] = false;
+    o.open[d] = true;
+  }
+  fix.configure_core(o, false);
+  const int n = nlocal + nghost, ns = n + n / 16 + 64;
+  ed.resize(ns);
+  stag.assign(ns, -1);
+  smask.assign(ns, 0);
+  sowned.assign(ns, 0);
+  sseen.assign(ns, 0);
+  stamp = 0;
+  slot_of_tag.assign(maxtag + 1, -1);
+  free_slots.clear();
+  lslot.resize(nlocal);
+  for (int e = 0; e < ns; e++) {
+    auto p = ed.particle(e);
+    if (e >= n) {
+      ed.remove(e);
+      free_slots.push_back(ns - 1 - (e - n));
+      continue;
+    }
+    const int a = aorder[e];
+    const AtomRecord in = record_of(a, t0);
+    p.x = Vec3(in.x[0], in.x[1], in.x[2]);
+    p.v = Vec3(in.v[0], in.v[1], in.v[2]);
+    p.w = Vec3(in.w[0], in.w[1], in.w[2]);
+    p.a = in.radius;
+    p.m = in.mass;
+    p.type = (int) in.type;
+    p.t_last = in.tlast;
+    stag[e] = (long) in.tag;
+    smask[e] = (int) in.mask;
+    if (a < nlocal) {
+      sowned[e] = 1;
+      lslot[a] = e;
+    } else {
+      cslot.push_back(e);
+    }
+    slot_of_tag[stag[e]] = e;
+  }
+  ed.set_clock(t0);
+  fix.start_core(false);
+  repredicted = n;
+  fix.totals[FixHardsphereED::QUEUE_REBUILDS] += 1.0;
+}
+
+// ------------------------------------------------ the events that matter here
+// those of the copies (influence times, histories compared) and of the sent atoms (histories
+// published); a collision of two other owned atoms changes no influence time (owned atoms have
+// t* = infinity) and is published by nobody. The watched slots in a list, the copies first,
+// and each one's place in it: the influence times and event lists are kept for these only;
+// widx is -1 for every other slot.
+void HardsphereDomainWindow::watch_events()
+{
+  const int n = ed.size();
+  ed.set_accounting({stag.data(), sowned.data()});    // (both unchanged until the next window)
+  watch.assign(n, 0);
+  for (int e : wlist)
+    if (e < (int) widx.size()) widx[e] = -1;    // (the last window's entries)
+  widx.resize(n, -1);
+  wlist.assign(cslot.begin(), cslot.end());
+  for (int i : sendlist) wlist.push_back(lslot[i]);
+  nwatch = (int) wlist.size();
+  ncopy = (int) cslot.size();
+  for (int k = 0; k < nwatch; k++) {
+    watch[wlist[k]] = 1;
+    widx[wlist[k]] = k;
+  }
+  history.clear();
+  ed.record_events(&history, watch.data());
+  if (fix.check_overlaps && keep) {
+    // a kept core continues an exact trajectory: the once-per-run overlap check is needed
+    // only if something other than this fix changed atoms a rank had written back (all
+    // ranks decide alike)
+    long any = 0;
+    MPI_Allreduce(&owned_changed, &any, 1, MPI_LONG, MPI_SUM, world);
+    if (any == 0) fix.check_overlaps = false;
+  }
+  fix.report_overlaps(true);
+}
+
+// ------------------------------------------------ the window itself
+// kicks at their exact times, with the momentum shift over the whole group; false: the core
+// failed (e.g. the event cap: the gathered redo tells whether it is real)
+bool HardsphereDomainWindow::advance(double t0, double dt)
+{
+  // (the guard: who came near the speed bound)
+  const double slim = D / dt - 0.5 * dt * g;
+  s2lim = slim > 0.0 ? 0.999 * slim * slim : 0.0;
+  ed.track_fast(s2lim);
+  kick_from.resize(fix.kicks.size());
+  for (size_t f = 0; f < fix.kicks.size(); f++) kick_from[f] = fix.kicks[f]->kick_counter();
+  if (!fix.kicks.empty()) {
+    kick_tags.assign(stag.begin(), stag.end());
+    fix.schedule_kicks(t0, dt, kick_tags, smask);
+  }
+  fix.clog.clear();
+  ed.record_collisions(fix.want_rows ? &fix.clog : nullptr);
+  bool ok = true;
+  try {
+    fix.last = ed.advance_to(dt);
+  } catch (std::exception &) {
+    ok = false;
+  }
+  ed.record_events(nullptr);
+  ed.record_collisions(nullptr);
+  return ok;
+}
+
+// ------------------------------------------------ guard: no owned atom went too far
+// An owned atom j that went further than D (path p > D) is harmless if it stayed out of reach
+// of every rank r that did not receive it: its distance to r's owned atoms is at least
+// W + p - D = p + D + 2 a_max, more than it and any atom of r (path <= D, or harmless in turn)
+// can close. A rank that did receive it compares its history instead.
+double HardsphereDomainWindow::gap_to(const double *xi, int r) const
+{
+  double s2 = 0.0;
+  for (int d = 0; d < dim; d++) {
+    if (reg[r].whole[d]) continue;
+    const double lo = bb[6 * r + d], hi = bb[6 * r + 3 + d];
+    double best = INF;
+    for (int k : {0, -1, 1}) {
+      if (k != 0 && !domain->periodicity[d]) continue;
+      const double y = xi[d] + k * domain->prd[d];
+      best = std::min(best, std::max(0.0, std::max(lo - y, y - hi)));
+    }
+    s2 += best * best;
+  }
+  return std::sqrt(s2);
+}
+
+// owned atom i with the largest squared speed s2: false if it may have reached an atom that
+// was not in its window
+bool HardsphereDomainWindow::guard_atom(int i, double s2, double dt)
+{
+  const double p = ed.path_bound(s2, dt);
+  if (p <= D) return true;
+  int s3[3];
+  for (int r = 0; r < comm->nprocs; r++) {
+    if (r == comm->me || bb[6 * r] > bb[6 * r + 3]) continue;
+    if (inside(reg[r], atom->x[i], s3)) continue;    // r has it: histories are compared
+    if (gap_to(atom->x[i], r) < W + p - D) return false;
+  }
+  return true;
+}
+
+// Most atoms are far below the bound: the core lists those whose speed after a velocity change
+// came near it (the threshold has a margin that leaves the borderline ones to the exact bound);
+// an atom never listed is bounded by its speed at window time 0 (in LAMMPS's arrays until the
+// write-back) or the threshold. (No atom starts at the threshold when reach * widen exceeds 1
+// by the threshold's margin: gmx[0] bounds every atom's speed.)
+bool HardsphereDomainWindow::guard(double dt)
+{
+  const double *va = nlocal > 0 ? atom->v[0] : nullptr;
+  if (s2lim <= gmx[0] * gmx[0] * (1.0 + 1e-9)) {
+    for (int i = 0; i < nlocal; i++) {
+      const double s2 = dim == 2 ? speed2<2>(va + 3 * i) : speed2<3>(va + 3 * i);
+      if (s2 >= s2lim && !guard_atom(i, s2, dt)) return false;
+    }
+  }
+  if (ed.fast_list().empty()) return true;
+  std::vector<int> atom_of(ed.size(), -1);
+  for (int i = 0; i < nlocal; i++) atom_of[lslot[i]] = i;
+  for (const auto &f : ed.fast_list())
+    if (atom_of[f.first] >= 0 && !guard_atom(atom_of[f.first], f.second, dt)) return false;
+  return true;
+}
+
+// ------------------------------------------------ influence times t* of the copies
+// (per watched slot; every other slot is an owned atom: t* = infinity)
+void HardsphereDomainWindow::influence_times()
+{
+  tstar.resize(nwatch);
+  for (int k = 0; k < nwatch; k++) tstar[k] = k < ncopy ? -INF : INF;
+  const int *wi = widx.data();
+  double *ts = tstar.data();
+  for (auto it = history.rbegin(); it != history.rend(); ++it) {
+    if (it->j < 0) continue;
+    const int ki = wi[it->i], kj = wi[it->j];
+    if ((ki < 0 ? INF : ts[ki]) >= it->t && kj >= 0) ts[kj] = std::max(ts[kj], it->t);
+    if ((kj < 0 ? INF : ts[kj]) >= it->t && ki >= 0) ts[ki] = std::max(ts[ki], it->t);
+  }
+}
+
+// one event of particle e as published: time, partner tag or -1 - wall, v and omega after
+void HardsphereDomainWindow::event_of(int e, int m, double *out) const
+{
+  const auto &h = history[m];
+  const bool first = h.i == e;
+  out[0] = h.t;
+  out[1] = h.j < 0 ? (double) h.j : (double) stag[first ? h.j : h.i];
+  const Vec3 &vv = first ? h.vi : h.vj, &ww = first ? h.wi : h.wj;
+  vv.to(out + 2);
+  ww.to(out + 5);
+}
+
+// ------------------------------------------------ publish the histories of sent atoms
+// events per watched slot (pair and wall collisions, in time order), then the sent atoms'
+// lists to every rank
+void HardsphereDomainWindow::publish_histories()
+{
+  start.assign(nwatch + 1, 0);
+  // (a watched partner's place in the list, or -1: a wall, or an owned atom nobody watches)
+  auto place_of_j = [&](const EDEvent &h) { return h.j >= 0 ? widx[h.j] : -1; };
+  for (const auto &h : history) {
+    const int ki = widx[h.i], kj = place_of_j(h);
+    if (ki >= 0) start[ki + 1]++;
+    if (kj >= 0) start[kj + 1]++;
+  }
+  for (int k = 0; k < nwatch; k++) start[k + 1] += start[k];
+  evlist.resize(start[nwatch]);    // (every entry is set below)
+  fill.assign(start.begin(), start.end() - 1);
+  for (int m = 0; m < (int) history.size(); m++) {
+    const auto &h = history[m];
+    const int ki = widx[h.i], kj = place_of_j(h);
+    if (ki >= 0) evlist[fill[ki]++] = m;
+    if (kj >= 0) evlist[fill[kj]++] = m;
+  }
+  size_t hsize = 0;
+  for (int k = ncopy; k < nwatch; k++) hsize += 2 + (size_t) (start[k + 1] - start[k]) * NEV;
+  hsend.resize(hsize);    // (every entry is set below)
+  for (size_t k = ncopy, o0 = 0; k < (size_t) nwatch; k++) {
+    const int e = wlist[k];
+    const int cnt = start[k + 1] - start[k];
+    hsend[o0] = (double) stag[e];
+    hsend[o0 + 1] = (double) cnt;
+    for (int m = 0; m < cnt; m++) event_of(e, evlist[start[k] + m], &hsend[o0 + 2 + (size_t) m * NEV]);
+    o0 += 2 + cnt * NEV;
+  }
+  fix.allgather(hsend, hrecv);
+}
+
+// ------------------------------------------------ compare where it mattered
+// Tolerances: a copy that went wrong (a partner it lacked) differs from its owner's record by a
+// whole event (count or partner) or by O(1) in velocity after it. Rounding differences (copies
+// across periodic boundaries sit at shifted coordinates, and cell grids differ, so states are
+// advanced at different intermediate times) are amplified by chaos, by about 2 lambda / sigma
+// per collision; they count as conflicts (the window is redone, so nothing is lost but time)
+// once they exceed 1e-6 of the scales, which takes a window of several collisions per atom in a
+// dilute gas (measured: doc/Howto_hardsphere_parallel). Returns the copies in conflict.
+int HardsphereDomainWindow::compare_histories(double dt)
+{
+  // where each copy's published history starts in hrecv (-1: none; every copy's owner sent it)
+  published.assign(ncopy, -1);
+  for (int p = 0; p < comm->nprocs; p++) {
+    if (p == comm->me) continue;
+    for (size_t k = fix.displs[p]; k < (size_t) (fix.displs[p] + fix.counts[p]);) {
+      const long t = (long) hrecv[k];
+      const int sl = t < (long) slot_of_tag.size() ? slot_of_tag[t] : -1;
+      if (sl >= 0 && widx[sl] >= 0 && widx[sl] < ncopy) published[widx[sl]] = (long) k;    // (a copy here)
+      k += 2 + (size_t) hrecv[k + 1] * NEV;
+    }
+  }
+  const double ttol = 1e-6 * dt, vtol = 1e-6 * (gmx[0] + 2.0 * vwall + g * dt);
+  const double wtol = vtol / std::max(gmx[1], 1e-300);
+  int conflicts = 0;
+  double mine[NEV];
+  for (int c = 0; c < ncopy; c++) {
+    const int e = cslot[c];
+    if (tstar[c] == -INF) continue;
+    const long k = published[c];
+    if (k < 0) {
+      conflicts++;    // cannot happen: every copy was sent, so its history was published
+      continue;
+    }
+    const double *theirs = &hrecv[k + 2];
+    const int ntheirs = (int) hrecv[k + 1];
+    const int nmine = start[c + 1] - start[c];
+    const double limit = tstar[c] + ttol;
+    bool same = true;
+    for (int a = 0; same; a++) {
+      const bool more_a = a < nmine && history[evlist[start[c] + a]].t <= limit;
+      const bool more_b = a < ntheirs && theirs[(size_t) a * NEV] <= limit;
+      if (!more_a && !more_b) break;
+      if (more_a != more_b) {
+        same = false;
+        break;
+      }
+      event_of(e, evlist[start[c] + a], mine);
+      const double *t = &theirs[(size_t) a * NEV];
+      same = mine[1] == t[1] && std::fabs(mine[0] - t[0]) <= ttol;
+      for (int d = 0; d < 3 && same; d++)
+        same = std::fabs(mine[2 + d] - t[2 + d]) <= vtol && std::fabs(mine[5 + d] - t[5 + d]) <= wtol;
+    }
+    if (!same) conflicts++;
+  }
+  return conflicts;
+}
+
+// ------------------------------------------------ commit the owned atoms
+void HardsphereDomainWindow::commit(double t0, double dt)
+{
+  double *xa = nlocal > 0 ? atom->x[0] : nullptr, *va = nlocal > 0 ? atom->v[0] : nullptr;
+  double *wa = nlocal > 0 ? atom->omega[0] : nullptr;
+  imageint *image = atom->image;
+  const hardsphere::FarWrap wrap(domain);
+  for (int i = 0; i < nlocal; i++) {
+    const int e = lslot[i];
+    double xe[3];
+    ed.state(e, dt, xe, va + 3 * i, wa + 3 * i);
+    int dimg[3] = {0, 0, 0};
+    for (int d = 0; d < dim; d++) wrap.apply(d, xe[d], dimg[d]);    // (nothing moves in z in 2d)
+    FixHardsphereED::shift_image(image[i], dimg);
+    xa[3 * i] = xe[0];
+    xa[3 * i + 1] = xe[1];
+    xa[3 * i + 2] = xe[2];
+    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(e).t_last, t0);
+    if (fix.atally) fix.store_tally(i, e, t0);
+  }
+}
+
+// ------------------------------------------------ the statistics of all ranks
+void HardsphereDomainWindow::sum_statistics()
+{
+  granfric::EDStats &last = fix.last;
+  long lsum[8] = {last.collisions, last.sliding, last.tc_elastic, last.energy_created,
+                  last.crossings, last.wall_collisions, last.global_events, repredicted};
+  long gsum[8];
+  MPI_Allreduce(lsum, gsum, 8, MPI_LONG, MPI_SUM, world);
+  double esum[9] = {last.dE, last.dE_wall, last.injected}, gesum[9];
+  std::copy(last.virial, last.virial + 6, esum + 3);
+  MPI_Allreduce(esum, gesum, 9, MPI_DOUBLE, MPI_SUM, world);
+  long lmax = last.max_collisions_one_particle, gmax;
+  MPI_Allreduce(&lmax, &gmax, 1, MPI_LONG, MPI_MAX, world);
+  sum_over_ranks(last.gamma_hist, MPI_LONG, world);
+  sum_over_ranks(last.wall_hits, MPI_LONG, world);
+  sum_over_ranks(last.wall_impulse, MPI_DOUBLE, world);
+  sum_over_ranks(last.wall_work, MPI_DOUBLE, world);
+  last.collisions = gsum[0];
+  last.sliding = gsum[1];
+  last.tc_elastic = gsum[2];
+  last.energy_created = gsum[3];
+  last.crossings = gsum[4];
+  last.wall_collisions = gsum[5];
+  last.global_events = fix.kicks.empty() ? 0 : last.global_events;
+  last.dE = gesum[0];
+  last.dE_wall = gesum[1];
+  last.injected = gesum[2];
+  std::copy(gesum + 3, gesum + 9, last.virial);
+  last.max_collisions_one_particle = gmax;
+  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) gsum[7];
+}
+
+double HardsphereDomainWindow::memory_usage() const
+{
+  auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
+  return bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) + bytes(hrecv) + bytes(stag) +
+      bytes(smask) + bytes(kick_tags) + bytes(slot_of_tag) + bytes(free_slots) + bytes(lslot) +
+      bytes(sowned) + bytes(sowned_prev) + bytes(sseen) + bytes(sent) + bytes(inslot) +
+      bytes(evlist) + bytes(cslot) + bytes(watch) + bytes(gsrc) + bytes(start) + bytes(fill) +
+      bytes(gshift) + bytes(tstar) + bytes(published) + bytes(aorder) + bytes(sendlist) +
+      bytes(wlist) + bytes(widx) + bytes(rm) + bytes(bb) + bytes(reg);
+}

@@ -1,0 +1,126 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+   GRANFRIC: the domain-decomposed window of fix hardsphere/ed (keyword parallel domain).
+
+   Each rank runs the window for its owned atoms plus copies of every other atom within a shell
+   around them, then checks that the result is exact (see hardsphere_domain_window.cpp). The
+   class owns the state kept from one window to the next (the core's slots, matched to atoms by
+   ID) and does one stage per method.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANFRIC_HARDSPHERE_DOMAIN_WINDOW_H
+#define LMP_GRANFRIC_HARDSPHERE_DOMAIN_WINDOW_H
+
+#include "pointers.h"
+
+#include "atom_record.h"
+
+#include "event_driven.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixHardsphereED;
+
+class HardsphereDomainWindow : protected Pointers {
+ public:
+  explicit HardsphereDomainWindow(FixHardsphereED &fix);
+  // one window [t0, t0 + dt) of the owned atoms; false: a conflict, nothing was changed (the
+  // caller redoes the window gathered)
+  bool run(double t0, double dt);
+  // the core no longer holds what the last window left (something else used or changed it)
+  void invalidate() { valid = false; }
+  // a new run keeps the core only without vibrating walls (see FixHardsphereED::setup)
+  bool kept() const { return valid; }
+  double memory_usage() const;
+
+ private:
+  // a rank's region: its owned atoms' bounding box widened by the shell W
+  struct Region {
+    double lo[3], hi[3];
+    bool whole[3];    // the whole periodic length in this dimension (no images)
+  };
+
+  FixHardsphereED &fix;
+  granfric::EventDriven &ed;
+
+  // ---- the window's stages, in order
+  void bound_reach(double dt);
+  void make_regions();
+  void send_copies(double t0);
+  void find_copies();
+  void order_by_id();
+  void load_core(double t0);
+  void watch_events();
+  bool advance(double t0, double dt);
+  bool guard(double dt);
+  void influence_times();
+  void publish_histories();
+  int compare_histories(double dt);
+  void commit(double t0, double dt);
+  void sum_statistics();
+
+  // ---- helpers of the stages
+  bool can_keep(granfric::EDOptions &o);
+  void keep_core(double t0);
+  void fresh_core(granfric::EDOptions &o, double t0);
+  bool inside(const Region &R, const double *x, int *s) const;
+  double gap_to(const double *x, int r) const;
+  long tag_of(int a) const;
+  AtomRecord record_of(int a, double t0) const;
+  bool rounding_only(int sl, const AtomRecord &r) const;
+  void event_of(int e, int m, double *out) const;
+  bool guard_atom(int i, double s2, double dt);
+
+  // ---- this window (set by the stages)
+  int nlocal = 0, dim = 3, nghost = 0, ncopy = 0, nwatch = 0;
+  double step = 0.0;             // the window's length
+  granfric::EDOptions base;      // the fix's core options
+  double gmx[2] = {0, 0};        // the largest speed bound and radius over all ranks
+  double mybb[6];                // this rank's bounding box
+  long maxtag = 0;               // the largest atom ID here
+  double vwall = 0.0, g = 0.0;   // the fastest wall's speed bound, |gravity|
+  double D = 0.0, W = 0.0;       // the reach and the shell width
+  double s2lim = 0.0;            // squared speed above which the core lists an atom (guard)
+  std::vector<double> bb;        // every rank's bounding box
+  std::vector<Region> reg;       // every rank's region
+  bool keep = false;             // the core of the last window was kept
+  long repredicted = 0, owned_changed = 0;
+  std::vector<long> kick_from;   // each kick fix's counter before the window
+  std::vector<tagint> kick_tags; // the slots' atom IDs for the kicks
+
+  // ---- kept from one window to the next
+  bool valid = false;
+  double last_dt = 0.0;
+  double grid_lo[3] = {0, 0, 0}, grid_hi[3] = {0, 0, 0};    // the kept cell grid (open dims)
+  bool grid_whole[3] = {false, false, false};
+  std::vector<int> slot_of_tag;                 // slot of each atom ID, -1: none
+  std::vector<int> free_slots;
+  std::vector<long> stag;                       // each slot's atom ID (-1: empty)
+  std::vector<int> smask;                       // each slot's group mask (0: empty)
+  std::vector<int> lslot;                       // slot of each owned atom (this window)
+  std::vector<uint8_t> sowned, sowned_prev;     // slot owned in this / the last window
+  std::vector<int> sseen;                       // slot matched in this window (stamp)
+  int stamp = 0;
+  std::vector<int> aorder;                      // the window's atoms in the order of their IDs
+
+  // ---- scratch of every window, kept to spare their allocation: atoms sent (flags and
+  // list), the slot of each atom, the copies' slots, their records in drecv and image shifts,
+  // the watched slots (copies, then sent atoms) and each slot's place among them (-1: none),
+  // the events of each watched slot (evlist from start), influence times, where each copy's
+  // history was received, slots to empty
+  std::vector<double> dsend, drecv, hsend, hrecv;
+  std::vector<granfric::EDEvent> history;
+  std::vector<char> sent;
+  std::vector<int> sendlist, wlist, widx, rm, inslot, evlist, cslot, gsrc, start, fill, gshift;
+  std::vector<double> tstar;
+  std::vector<long> published;
+  std::vector<uint8_t> watch;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

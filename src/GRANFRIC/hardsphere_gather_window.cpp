@@ -1,0 +1,280 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+/* ----------------------------------------------------------------------
+   GRANFRIC: fix hardsphere/ed, gathered windows (see hardsphere_gather_window.h)
+------------------------------------------------------------------------- */
+
+#include "hardsphere_gather_window.h"
+
+#include "fix_hardsphere_ed.h"
+#include "hardsphere_host.h"
+#include "pair_hardsphere.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cstring>
+#include <utility>
+
+using namespace LAMMPS_NS;
+
+static constexpr int NPACK = AtomRecordAt::SIZE;    // (doubles per atom in a message)
+
+HardsphereGatherWindow::HardsphereGatherWindow(FixHardsphereED &f) :
+    Pointers(f.lmp), fix(f), ed(f.ed)
+{
+}
+
+void HardsphereGatherWindow::run(double t0, double dt)
+{
+  gather(t0);
+  order_by_id();
+  for (int d = 0; d < 3; d++) wper[d] = domain->periodicity[d] ? domain->prd[d] : 0.0;
+  if (can_reuse()) {
+    ed.rebase(prev_dt);
+    ed.set_clock(t0);
+    fix.check_overlaps = false;
+  } else {
+    fresh_core(t0);
+  }
+  schedule_kicks(t0, dt);
+  advance(t0, dt);
+  take_back(t0, dt);
+  prev_dt = dt;
+}
+
+// atom k of the gathered system: on one rank the atom arrays are the system, read in place
+AtomRecord HardsphereGatherWindow::record(int k, double t0) const
+{
+  return comm->nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : fix.atom_record(k, t0);
+}
+
+tagint HardsphereGatherWindow::tag_of(int k) const
+{
+  return comm->nprocs > 1 ? (tagint) recvbuf[(size_t) k * NPACK + AtomRecordAt::TAG] : atom->tag[k];
+}
+
+// On several ranks every rank packs its atoms and gathers everybody's. On one rank the atom
+// arrays are the system: they are read in place (no copy).
+void HardsphereGatherWindow::gather(double t0)
+{
+  const int nlocal = atom->nlocal, nprocs = comm->nprocs;
+  int total = nlocal * NPACK;
+  if (nprocs == 1) {
+    fix.displs.assign(1, 0);
+  } else {
+    sendbuf.resize((size_t) nlocal * NPACK);
+    for (int i = 0; i < nlocal; i++) fix.atom_record(i, t0).write(&sendbuf[(size_t) i * NPACK]);
+    total = fix.allgather(sendbuf, recvbuf);
+  }
+  ntotal = total / NPACK;
+  // core particle s is this rank's atom order[s] - myfirst if that lies in [0, nlocal)
+  myfirst = fix.displs[comm->me] / NPACK;
+}
+
+// order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
+// step's order usually still holds
+void HardsphereGatherWindow::order_by_id()
+{
+  bool same_order = (int) order.size() == ntotal;
+  for (int s = 0; same_order && s < ntotal; s++) same_order = tag_of(order[s]) == otags[s];
+  if (same_order) return;
+  order.resize(ntotal);
+  for (int k = 0; k < ntotal; k++) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
+  // the same atoms as the core's if the sorted tags are the same
+  bool same = same_atoms && (int) otags.size() == ntotal;
+  otags.resize(ntotal);
+  for (int s = 0; s < ntotal; s++) {
+    const tagint t = tag_of(order[s]);
+    same = same && otags[s] == t;
+    otags[s] = t;
+  }
+  same_atoms = same;
+}
+
+// Keep the event queue of the previous window when nothing outside this fix touched the atoms
+// since then: same atoms, and positions, velocities and spins bit for bit what this window
+// wrote (every rank sees the same gathered data, so all decide alike). What was written is
+// recomputed from the core, with the same arithmetic, rather than stored.
+bool HardsphereGatherWindow::can_reuse()
+{
+  bool reuse = valid && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
+      (int) offset.size() == noff * ntotal;
+  for (int s = 0; reuse && s < ntotal; s++) reuse = reusable(s);
+  return reuse;
+}
+
+// does core particle s hold this window's atom (its position up to the periods LAMMPS wrapped,
+// which update its offsets)?
+bool HardsphereGatherWindow::reusable(int s)
+{
+  const int k = order[s];
+  // this window's x, v, omega of the atom (in place on one rank)
+  const double *bx, *bv, *bw;
+  if (comm->nprocs == 1) {
+    bx = atom->x[k];
+    bv = atom->v[k];
+    bw = atom->omega[k];
+    if (!ed.is_body(s, atom->radius[k], atom->rmass[k], atom->type[k])) return false;
+  } else {
+    const double *r = &recvbuf[(size_t) k * NPACK];
+    bx = r + AtomRecordAt::X;
+    bv = r + AtomRecordAt::V;
+    bw = r + AtomRecordAt::W;
+    if (!ed.is_body(s, r[AtomRecordAt::RADIUS], r[AtomRecordAt::MASS], (int) r[AtomRecordAt::TYPE]))
+      return false;
+  }
+  double w[9];
+  written_state(s, prev_dt, w);
+  for (int d = 0; d < 3; d++)
+    if (bv[d] != w[3 + d] || bw[d] != w[6 + d]) return false;
+  // positions: what this window wrote, or that shifted by one period by Domain::pbc()
+  for (int d = 0; d < 3; d++) {
+    const double b = bx[d];
+    if (b == w[d]) continue;
+    int8_t &off = offset[(size_t) s * noff + d];
+    if (!domain->periodicity[d] || d >= noff) return false;
+    if (b == w[d] + domain->prd[d] && off > -OFFSET_MAX)
+      off--;
+    else if (b == std::max(w[d] - domain->prd[d], domain->boxlo[d]) && off < OFFSET_MAX)
+      off++;
+    else
+      return false;    // (or the offset would leave its range: start afresh)
+  }
+  return true;
+}
+
+// what this window writes for core particle s at window time t: position in LAMMPS's frame
+// (less the stored periods), velocity, spin
+void HardsphereGatherWindow::written_state(int s, double t, double *w) const
+{
+  ed.state(s, t, w, w + 3, w + 6);
+  const int8_t *off = &offset[(size_t) s * noff];
+  for (int d = 0; d < noff; d++)
+    if (off[d]) w[d] -= off[d] * wper[d];    // (not periodic: wper = 0 and off = 0)
+}
+
+// the core afresh from the gathered atoms, in the order of their IDs
+void HardsphereGatherWindow::fresh_core(double t0)
+{
+  fix.configure_core(fix.core_options());
+  ed.resize(ntotal);
+  for (int s = 0; s < ntotal; s++) {
+    const AtomRecord r = record(order[s], t0);
+    auto p = ed.particle(s);
+    p.x = granfric::Vec3(r.x[0], r.x[1], r.x[2]);
+    p.v = granfric::Vec3(r.v[0], r.v[1], r.v[2]);
+    p.w = granfric::Vec3(r.w[0], r.w[1], r.w[2]);
+    p.a = r.radius;
+    p.m = r.mass;
+    p.type = (int) r.type;
+    p.t_last = r.tlast;
+  }
+  same_atoms = true;
+  ed.set_clock(t0);
+  fix.start_core(true);
+  fix.report_overlaps(false);
+  noff = domain->dimension;
+  offset.assign((size_t) ntotal * noff, 0);
+  fix.totals[FixHardsphereED::QUEUE_REBUILDS] += 1.0;
+  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) ntotal;
+}
+
+// kicks of fix hardsphere/kick at their exact times inside the window (and the masks the
+// collision rows report)
+void HardsphereGatherWindow::schedule_kicks(double t0, double dt)
+{
+  if (fix.kicks.empty() && !fix.want_rows) return;
+  cmask.resize(ntotal);
+  for (int s = 0; s < ntotal; s++) {
+    const int k = order[s];
+    cmask[s] = comm->nprocs > 1 ? (int) recvbuf[(size_t) k * NPACK + AtomRecordAt::MASK] : atom->mask[k];
+  }
+  if (!fix.kicks.empty()) fix.schedule_kicks(t0, dt, otags, cmask);
+}
+
+// the window itself; a core that fails stops the run with what went wrong
+void HardsphereGatherWindow::advance(double t0, double dt)
+{
+  ed.set_accounting(granfric::EDAccounting());
+  ed.record_events(nullptr);
+  fix.clog.clear();
+  ed.record_collisions(fix.want_rows ? &fix.clog : nullptr);
+  try {
+    fix.last = ed.advance_to(dt);
+  } catch (granfric::EventCapError &e) {
+    valid = false;
+    if (e.kind == granfric::EventCapError::CROSSINGS)
+      error->all(FLERR,
+                 "Fix hardsphere/ed: {} cell crossings within step {} exceed maxevents x atoms "
+                 "= {}; atom {} was crossing at speed {:.6g}: atoms move far faster than the system's "
+                 "scale (did a collision law create energy, e.g. hardsphere/jz with kappa_d > "
+                 "kappa_s, or does an atom start much faster than the others?)",
+                 e.n, update->ntimestep, e.n - 1, (tagint) otags[e.i], e.speed);
+    bool creating = false;
+    for (const auto &law : fix.law_table()) creating = creating || law.can_create_energy();
+    error->all(FLERR,
+               "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
+               "last one with atom {} at time {}: {}",
+               (tagint) otags[e.i], e.n, update->ntimestep, fix.maxevents, (tagint) otags[e.j],
+               t0 + e.t,
+               creating ? "a collision law here can create energy (hardsphere/jz with kappa_d > "
+                          "kappa_s), which can run away; use kappa_d <= kappa_s, or raise "
+                          "maxevents if the energy stays bounded"
+                        : "inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
+  } catch (std::exception &e) {
+    fix.core_failed(e, true);
+  }
+  // (every rank ran every collision: rank 0 keeps the rows)
+  if (comm->me != 0) fix.clog.clear();
+  fix.keep_rows(t0, otags, cmask);
+}
+
+// State at the end of the window in LAMMPS's frame: the core's unwrapped position less the
+// periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
+// atom more than half a box outside (a step longer than a box crossing) is wrapped here and its
+// image flags follow. The same arithmetic on every rank, and as written_state's.
+void HardsphereGatherWindow::take_back(double t0, double dt)
+{
+  const int nlocal = atom->nlocal;
+  const hardsphere::FarWrap wrap(domain);
+  bool offsets_full = false;    // an offset left its range: the next window starts afresh
+  for (int s = 0; s < ntotal; s++) {
+    const int i = order[s] - myfirst;    // its owned atom, or none
+    int8_t *stored = &offset[(size_t) s * noff];
+    int dimg[3] = {0, 0, 0};
+    double w[9];
+    ed.state(s, dt, w, w + 3, w + 6);
+    for (int d = 0; d < noff; d++) {
+      int off = stored[d];
+      double y = off ? w[d] - off * wper[d] : w[d];
+      dimg[d] = wrap.periods(d, y);
+      if (dimg[d]) {
+        off += dimg[d];
+        if (off < -OFFSET_MAX || off > OFFSET_MAX) offsets_full = true;
+        stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off));
+        y = off ? w[d] - off * wper[d] : w[d];
+      }
+      w[d] = y;
+    }
+    if (i < 0 || i >= nlocal) continue;
+    if (fix.atally) fix.store_tally(i, s, t0);
+    FixHardsphereED::shift_image(atom->image[i], dimg);
+    memcpy(atom->x[i], w, 3 * sizeof(double));
+    memcpy(atom->v[i], w + 3, 3 * sizeof(double));
+    memcpy(atom->omega[i], w + 6, 3 * sizeof(double));
+    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(s).t_last, t0);
+  }
+  valid = !offsets_full;
+}
+
+double HardsphereGatherWindow::memory_usage() const
+{
+  auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
+  return bytes(sendbuf) + bytes(recvbuf) + bytes(order) + bytes(otags) + bytes(offset) + bytes(cmask);
+}

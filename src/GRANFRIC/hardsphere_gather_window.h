@@ -1,0 +1,84 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   SPDX-License-Identifier: GPL-2.0-or-later
+   Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+   GRANFRIC: the gathered window of fix hardsphere/ed (serial runs, keyword parallel gather,
+   and the redo of a domain window that had a conflict).
+
+   Every rank gathers the whole system, ordered by atom ID (so the result depends neither on
+   the number of ranks nor on atom sorting), runs the core and takes back its owned atoms. The
+   core's event queue is kept from one window to the next while nothing but this window changed
+   the atoms. The class owns that state and does one stage per method.
+------------------------------------------------------------------------- */
+
+#ifndef LMP_GRANFRIC_HARDSPHERE_GATHER_WINDOW_H
+#define LMP_GRANFRIC_HARDSPHERE_GATHER_WINDOW_H
+
+#include "pointers.h"
+
+#include "atom_record.h"
+
+#include "event_driven.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixHardsphereED;
+
+class HardsphereGatherWindow : protected Pointers {
+ public:
+  explicit HardsphereGatherWindow(FixHardsphereED &fix);
+  // one window [t0, t0 + dt) of the whole system
+  void run(double t0, double dt);
+  // the core no longer holds what the last window left (something else used or changed it)
+  void invalidate() { valid = false; }
+  bool kept() const { return valid; }
+  // the atom ID of core particle s (after a window)
+  tagint tag_of_particle(long s) const { return otags[s]; }
+  double memory_usage() const;
+
+ private:
+  FixHardsphereED &fix;
+  granfric::EventDriven &ed;
+
+  // ---- the window's stages, in order
+  void gather(double t0);
+  void order_by_id();
+  bool can_reuse();
+  void fresh_core(double t0);
+  void schedule_kicks(double t0, double dt);
+  void advance(double t0, double dt);
+  void take_back(double t0, double dt);
+
+  // ---- helpers of the stages
+  AtomRecord record(int k, double t0) const;    // atom k of the gathered system
+  tagint tag_of(int k) const;
+  bool reusable(int s);
+  void written_state(int s, double t, double *w) const;
+
+  int ntotal = 0;                 // atoms in the system
+  int myfirst = 0;                // index of this rank's first atom in the gathered system
+
+  // ---- kept from one window to the next
+  bool valid = false;             // the core continues the last window
+  double prev_dt = 0.0;
+  std::vector<int> order;         // index in recvbuf (or the atom arrays) by ID
+  std::vector<tagint> otags;      // the IDs in that order (= the core's order)
+  bool same_atoms = false;        // otags unchanged since the core's last start
+  // periods between the core's frame and LAMMPS's, per core particle and dimension (noff),
+  // within +-OFFSET_MAX: a window that would go beyond ends with the queue dropped, so the next
+  // one starts afresh from LAMMPS's positions with the offsets back at 0
+  std::vector<int8_t> offset;
+  static constexpr int OFFSET_MAX = 100;
+  int noff = 3;
+  double wper[3] = {0, 0, 0};     // period per offset (0: not periodic)
+
+  // ---- scratch
+  std::vector<double> sendbuf, recvbuf;
+  std::vector<int> cmask;         // atom masks in core order
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
