@@ -6,6 +6,8 @@
 
 #include "pair_hardsphere.h"
 
+#include "law_table.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -25,15 +27,11 @@ using granfric::LawParams;
 
 enum { SPHERE, DISC, NUMBER };
 
-static constexpr int MAXRAW = 4;
+static constexpr int MAXRAW = granfric::LawSpec::MAXCOEFF;
 
-static const char *law_style(LawKind k)
+static std::string law_style(LawKind k)
 {
-  switch (k) {
-    case LawKind::ROUGH: return "hardsphere/rough";
-    case LawKind::WALTON: return "hardsphere/walton";
-    default: return "hardsphere/jz";
-  }
+  return std::string("hardsphere/") + granfric::law_spec(k).name;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -42,7 +40,7 @@ PairHardsphere::PairHardsphere(LAMMPS *lmp, LawKind k) :
     Pair(lmp), lawkind(k), qshape(0.4), inertia_style(SPHERE), raw(nullptr), params(nullptr),
     onerad(nullptr), maxrad(nullptr)
 {
-  nraw = (k == LawKind::ROUGH) ? 2 : (k == LawKind::WALTON) ? 3 : 4;
+  nraw = granfric::law_spec(k).ncoeff;
   single_enable = 1;
   single_extra = NSINGLE;
   svector = new double[NSINGLE];
@@ -137,11 +135,7 @@ void PairHardsphere::settings(int narg, char **arg)
 
 const char *PairHardsphere::coeff_names() const
 {
-  switch (lawkind) {
-    case LawKind::ROUGH: return "r beta";
-    case LawKind::WALTON: return "r mu rtmax";
-    default: return "qn qt kappa_s kappa_d";
-  }
+  return granfric::law_spec(lawkind).coeff_names;
 }
 
 // a number, or inf (any case) where infinity is allowed
@@ -156,46 +150,26 @@ static double parse_value(const std::string &who, const char *name, const char *
   return utils::numeric(FLERR, v, false, lmp);
 }
 
+// the law's coefficients from arg (as many as the law has) into values, checked against the
+// table of laws; errors in the name of who
 LawParams PairHardsphere::parse_law(const std::string &who, char **arg, double *values) const
 {
-  auto in_range = [&](const char *name, double v, double lo, double hi, const char *range) {
-    if (!(v >= lo && v <= hi))
-      error->all(FLERR, "{}: {} = {} is out of range ({})", who, name, v, range);
-  };
-  LawParams p;
-  if (lawkind == LawKind::ROUGH) {
-    values[0] = parse_value(who, "r", arg[0], false, lmp);
-    values[1] = parse_value(who, "beta", arg[1], false, lmp);
-    in_range("r", values[0], 0.0, 1.0, "0 <= r <= 1");
-    in_range("beta", values[1], -1.0, 1.0, "-1 <= beta <= 1");
-    p = LawParams::rough(values[0], values[1]);
-  } else if (lawkind == LawKind::WALTON) {
-    values[0] = parse_value(who, "r", arg[0], false, lmp);
-    values[1] = parse_value(who, "mu", arg[1], true, lmp);
-    values[2] = parse_value(who, "rtmax", arg[2], false, lmp);
-    in_range("r", values[0], 0.0, 1.0, "0 <= r <= 1");
-    in_range("mu", values[1], 0.0, INF, "mu >= 0, or inf");
-    in_range("rtmax", values[2], -1.0, 1.0, "-1 <= rtmax <= 1");
-    p = LawParams::walton(values[0], values[1], values[2]);
-  } else {
-    values[0] = parse_value(who, "qn", arg[0], false, lmp);
-    values[1] = parse_value(who, "qt", arg[1], false, lmp);
-    values[2] = parse_value(who, "kappa_s", arg[2], true, lmp);
-    values[3] = parse_value(who, "kappa_d", arg[3], true, lmp);
-    in_range("qn", values[0], 0.0, 0.5, "0 <= qn <= 0.5");
-    in_range("qt", values[1], 0.0, 1.0, "0 <= qt <= 1");
-    in_range("kappa_s", values[2], 0.0, INF, "kappa_s >= 0, or inf");
-    in_range("kappa_d", values[3], 0.0, INF, "kappa_d >= 0, or inf");
-    if (values[3] == INF && values[2] != INF)
-      error->all(FLERR, "{}: kappa_d = inf needs kappa_s = inf (an infinite sliding impulse is "
-                 "undefined); kappa_s = {}", who, values[2]);
-    if (values[3] > values[2] && comm->me == 0)
-      error->warning(FLERR,
-                     "{}: kappa_d = {} > kappa_s = {}: the Jenkins-Zhang map is then "
-                     "discontinuous and can create energy (counted by fix hardsphere/ed)",
-                     who, values[3], values[2]);
-    p = LawParams::jz(values[0], values[1], values[2], values[3]);
-  }
+  const granfric::LawSpec &spec = granfric::law_spec(lawkind);
+  for (int k = 0; k < spec.ncoeff; k++)
+    values[k] = parse_value(who, spec.coeff[k].name, arg[k], spec.coeff[k].inf_ok, lmp);
+  const int bad = granfric::first_bad_coeff(spec, values);
+  if (bad >= 0 && bad < spec.ncoeff)
+    error->all(FLERR, "{}: {} = {} is out of range ({})", who, spec.coeff[bad].name, values[bad],
+               spec.coeff[bad].range);
+  if (bad == spec.ncoeff)
+    error->all(FLERR, "{}: {}; {} = {}", who, spec.joint, spec.coeff_names,
+               utils::join_words(std::vector<std::string>(arg, arg + spec.ncoeff), " "));
+  const LawParams p = spec.make(values);
+  if (p.can_create_energy() && comm->me == 0)
+    error->warning(FLERR,
+                   "{}: kappa_d = {} > kappa_s = {}: the Jenkins-Zhang map is then "
+                   "discontinuous and can create energy (counted by fix hardsphere/ed)",
+                   who, p.mu_d, p.mu_s);
   return p;
 }
 
@@ -231,13 +205,7 @@ void PairHardsphere::coeff(int narg, char **arg)
 // params[i][j] from raw[i][j] (values already validated)
 void PairHardsphere::set_law(int i, int j)
 {
-  const double *v = raw[i][j];
-  if (lawkind == LawKind::ROUGH)
-    params[i][j] = LawParams::rough(v[0], v[1]);
-  else if (lawkind == LawKind::WALTON)
-    params[i][j] = LawParams::walton(v[0], v[1], v[2]);
-  else
-    params[i][j] = LawParams::jz(v[0], v[1], v[2], v[3]);
+  params[i][j] = granfric::law_spec(lawkind).make(raw[i][j]);
   params[j][i] = params[i][j];
 }
 

@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-_LAWS = {"rough": 0, "walton": 1, "jz": 2}
 _lib = None
+_laws = None
 
 
 def build_dir():
@@ -30,7 +30,47 @@ def lib():
         d = ctypes.POINTER(ctypes.c_double)
         _lib.granfric_collide.argtypes = [ctypes.c_int, d, d, d, d, d]
         _lib.granfric_collide.restype = ctypes.c_int
+        for name in ("granfric_law_name", "granfric_law_joint"):
+            getattr(_lib, name).restype = ctypes.c_char_p
+        _lib.granfric_law_coeff.restype = ctypes.c_char_p
+        _lib.granfric_law_coeff.argtypes = [ctypes.c_int, ctypes.c_int,
+                                            ctypes.POINTER(ctypes.c_char_p)]
+        _lib.granfric_law_check.argtypes = [ctypes.c_int, d]
     return _lib
+
+
+def laws():
+    """The core's table of collision laws: {name: (index, [(coefficient, range in words), ...])}."""
+    global _laws
+    if _laws is None:
+        L, _laws = lib(), {}
+        for k in range(L.granfric_law_count()):
+            coeffs = []
+            for m in range(L.granfric_law_ncoeff(k)):
+                rng = ctypes.c_char_p()
+                name = L.granfric_law_coeff(k, m, ctypes.byref(rng))
+                coeffs.append((name.decode(), rng.value.decode()))
+            _laws[L.granfric_law_name(k).decode()] = (k, coeffs)
+    return _laws
+
+
+def law_index(law, coeffs):
+    """The table index of law `law` (a name), with coeffs as a float64 array checked against the
+    law's ranges; ValueError naming what is wrong."""
+    table = laws()
+    if law not in table:
+        raise ValueError(f"unknown collision law {law!r} (known: {', '.join(table)})")
+    k, names = table[law]
+    c = np.array(coeffs, dtype=float).ravel()
+    if c.size != len(names):
+        raise ValueError(f"law {law} takes {len(names)} coefficients "
+                         f"({' '.join(n for n, _ in names)}), not {c.size}")
+    bad = lib().granfric_law_check(k, c.ctypes.data_as(ctypes.POINTER(ctypes.c_double)))
+    if 0 <= bad < len(names):
+        raise ValueError(f"law {law}: {names[bad][0]} = {c[bad]} is out of range ({names[bad][1]})")
+    if bad == len(names):
+        raise ValueError(f"law {law}: {lib().granfric_law_joint(k).decode()}")
+    return k, c
 
 
 @dataclass
@@ -67,11 +107,11 @@ class Collision:
 def collide(law, coeffs, b1, b2, n):
     """Apply law ('rough' r beta | 'walton' r mu rtmax | 'jz' qn qt kappa_s kappa_d) to bodies
     b1, b2 touching along unit normal n (from 2 to 1). Returns a Collision."""
-    c = np.array(coeffs, dtype=float)
+    k, c = law_index(law, coeffs)
     a1, a2, nn = b1.array(), b2.array(), np.array(n, dtype=float)
     out = np.zeros(19)
     p = ctypes.POINTER(ctypes.c_double)
-    rc = lib().granfric_collide(_LAWS[law], c.ctypes.data_as(p), a1.ctypes.data_as(p),
+    rc = lib().granfric_collide(k, c.ctypes.data_as(p), a1.ctypes.data_as(p),
                                 a2.ctypes.data_as(p), nn.ctypes.data_as(p), out.ctypes.data_as(p))
     if rc != 0:
         raise ValueError(f"invalid {law} coefficients {coeffs}")
@@ -84,14 +124,14 @@ def mean_energy_changes(law, coeffs, q, dim, Ttr, Trot, n=20000, seed=1):
     collision of equal particles (m = 1): Gaussian velocities at Ttr, spins with I<w^2> = Trot,
     collisions weighted by the normal relative speed. Returns a dict with tr, tr_se, rot, rot_se,
     total, total_se, sliding."""
-    c = np.array(coeffs, dtype=float)
+    k, c = law_index(law, coeffs)
     out = np.zeros(7)
     f = lib().granfric_mean_energy_changes
     d = ctypes.POINTER(ctypes.c_double)
     f.argtypes = [ctypes.c_int, d, ctypes.c_double, ctypes.c_int, ctypes.c_double,
                   ctypes.c_double, ctypes.c_long, ctypes.c_ulong, d]
     f.restype = ctypes.c_int
-    if f(_LAWS[law], c.ctypes.data_as(d), q, dim, Ttr, Trot, n, seed, out.ctypes.data_as(d)) != 0:
+    if f(k, c.ctypes.data_as(d), q, dim, Ttr, Trot, n, seed, out.ctypes.data_as(d)) != 0:
         raise ValueError(f"invalid {law} coefficients {coeffs}")
     keys = ("tr", "tr_se", "rot", "rot_se", "total", "total_se", "sliding")
     return dict(zip(keys, (float(x) for x in out)))
@@ -111,7 +151,7 @@ def collide_batch(law, coeffs, v1, w1, v2, w2, n, m=1.0, a=0.5, q=0.4, want_dE=F
     for x in arrays[:4]:
         if not x.flags.writeable:
             raise ValueError("collide_batch updates v1, w1, v2, w2 in place: they must be writeable")
-    c = np.array(coeffs, dtype=float)
+    law_k, c = law_index(law, coeffs)
     dE = np.zeros(k) if want_dE else None
     d = ctypes.POINTER(ctypes.c_double)
     f = lib().granfric_collide_batch
@@ -119,7 +159,7 @@ def collide_batch(law, coeffs, v1, w1, v2, w2, n, m=1.0, a=0.5, q=0.4, want_dE=F
                   ctypes.c_double, d, d, d, d, d, d]
     f.restype = ctypes.c_int
     ptr = lambda x: x.ctypes.data_as(d) if x is not None else None
-    rc = f(_LAWS[law], ptr(c), k, m, a, q, *(ptr(x) for x in arrays), ptr(dE))
+    rc = f(law_k, ptr(c), k, m, a, q, *(ptr(x) for x in arrays), ptr(dE))
     if rc == -3:
         raise ValueError(f"invalid body m={m} a={a} q={q}")
     if rc != 0:

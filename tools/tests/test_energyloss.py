@@ -51,3 +51,19 @@ def test_table_one_is_consistent_with_eq_9(dE, q):
     moves q_eff by at most 1e-3 / (4 sqrt(1 + dE)))."""
     tol = 0.5e-3 + 0.5e-3 / (4.0 * (1.0 + dE) ** 0.5)
     assert energyloss.q_eff(dE) == pytest.approx(q, abs=tol)
+
+
+def test_laws_come_from_the_core_table():
+    from granfric import core
+    table = core.laws()
+    assert list(table) == ["rough", "walton", "jz"]
+    assert [n for n, _ in table["jz"][1]] == ["qn", "qt", "kappa_s", "kappa_d"]
+    assert core.law_index("walton", [0.9, math.inf, 0.3])[0] == 1
+    with pytest.raises(ValueError, match=r"rtmax = 1.5 is out of range \(-1 <= rtmax <= 1\)"):
+        core.collide("walton", [0.9, 0.4, 1.5], core.Body(), core.Body(), (1, 0, 0))
+    with pytest.raises(ValueError, match="kappa_d = inf needs kappa_s = inf"):
+        core.mean_energy_changes("jz", [0.1, 0.2, 0.3, math.inf], 0.4, 3, 1.0, 1.0, n=10)
+    with pytest.raises(ValueError, match="takes 2 coefficients"):
+        core.law_index("rough", [0.9])
+    with pytest.raises(ValueError, match="unknown collision law 'soft'"):
+        core.law_index("soft", [0.9])

@@ -4,11 +4,13 @@
 // Coulomb limit, limits between the laws (rough = walton mu->inf, jz = walton for kappa_s = kappa_d),
 // Risso eqs 6 (corrected) and 7, and the wall limit. Random collisions, 2D and 3D.
 #include "core/collision.h"
+#include "core/law_table.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 using namespace granfric;
 
@@ -40,15 +42,20 @@ Body random_body(Rng &rng, bool dim2)
   return b;
 }
 
+// random admissible coefficients of a law, made through the table of laws (which checks them)
 LawParams random_law(Rng &rng, LawKind kind)
 {
   const double r = rng.uni(0.0, 1.0);
   const double rt = rng.uni(-1.0, 1.0);
   const double mu = rng.uni(0.0, 1.0) < 0.1 ? INF : rng.loguni(1e-3, 1e3);
-  if (kind == LawKind::ROUGH) return LawParams::rough(r, rt);
-  if (kind == LawKind::WALTON) return LawParams::walton(r, mu, rt);
   const double ks = rng.loguni(1e-3, 1e2);
-  return LawParams::jz(0.5 * (1.0 - r), 0.5 * (1.0 - rt), ks, rng.uni(0.0, 1.0) < 0.5 ? ks : rng.loguni(1e-3, ks));
+  const double kd = rng.uni(0.0, 1.0) < 0.5 ? ks : rng.loguni(1e-3, ks);
+  double c[4] = {r, rt};
+  if (kind == LawKind::WALTON) c[1] = mu, c[2] = rt;
+  if (kind == LawKind::JZ) c[0] = 0.5 * (1.0 - r), c[1] = 0.5 * (1.0 - rt), c[2] = ks, c[3] = kd;
+  const LawSpec &s = law_spec(kind);
+  EXPECT_EQ(first_bad_coeff(s, c), -1);
+  return s.make(c);
 }
 
 Vec3 contact_velocity(const Body &b1, const Body &b2, const Vec3 &n)
@@ -96,7 +103,6 @@ TEST_P(RandomCollisions, ConservationRestitutionEnergy)
   int nslide = 0, nstick = 0;
   for (int k = 0; k < NRANDOM; ++k) {
     const LawParams law = random_law(rng, kind);
-    ASSERT_EQ(law.check(), nullptr);
     Body b1 = random_body(rng, dim2), b2 = random_body(rng, dim2);
     Vec3 n = rng.unit(dim2);
     if (dot(contact_velocity(b1, b2, n), n) > 0.0) n = -n;
@@ -315,17 +321,40 @@ TEST(CollisionLimits, WallIsHeavyLargePartner)
   }
 }
 
+// the table of laws: names, coefficient counts, ranges (each bound in and just out), inf only
+// where allowed, NaN never, and the joint condition of jz
 TEST(CollisionLimits, ParameterChecks)
 {
-  EXPECT_EQ(LawParams::rough(0.9, 0.3).check(), nullptr);
-  EXPECT_NE(LawParams::rough(1.1, 0.3).check(), nullptr);
-  EXPECT_NE(LawParams::rough(-0.1, 0.3).check(), nullptr);
-  EXPECT_NE(LawParams::rough(0.9, 1.3).check(), nullptr);
-  EXPECT_NE(LawParams::walton(0.9, -1.0, 0.3).check(), nullptr);
-  EXPECT_EQ(LawParams::walton(0.9, INF, 0.3).check(), nullptr);
-  EXPECT_NE(LawParams::walton(NAN, 1.0, 0.3).check(), nullptr);
-  EXPECT_EQ(LawParams::jz(0.0, 1.0, 0.2, 0.3).check(), nullptr);
-  EXPECT_NE(LawParams::jz(0.6, 0.0, 0.2, 0.3).check(), nullptr);
+  auto bad = [](const char *law, std::vector<double> c) {
+    const LawSpec *s = find_law(law);
+    EXPECT_NE(s, nullptr);
+    EXPECT_EQ((int) c.size(), s->ncoeff);
+    return first_bad_coeff(*s, c.data());
+  };
+  EXPECT_EQ(find_law("soft"), nullptr);
+  for (int k = 0; k < NLAWS; k++) EXPECT_EQ(find_law(law_spec(k).name), &law_spec(k));
+  EXPECT_EQ(bad("rough", {0.9, 0.3}), -1);
+  EXPECT_EQ(bad("rough", {1.0, -1.0}), -1);
+  EXPECT_EQ(bad("rough", {1.1, 0.3}), 0);
+  EXPECT_EQ(bad("rough", {-0.1, 0.3}), 0);
+  EXPECT_EQ(bad("rough", {0.9, 1.3}), 1);
+  EXPECT_EQ(bad("rough", {0.9, INF}), 1);
+  EXPECT_EQ(bad("walton", {0.9, -1.0, 0.3}), 1);
+  EXPECT_EQ(bad("walton", {0.9, INF, 0.3}), -1);
+  EXPECT_EQ(bad("walton", {NAN, 1.0, 0.3}), 0);
+  EXPECT_EQ(bad("walton", {0.9, 1.0, -1.01}), 2);
+  EXPECT_EQ(bad("jz", {0.0, 1.0, 0.2, 0.3}), -1);
+  EXPECT_EQ(bad("jz", {0.5, 0.0, INF, INF}), -1);
+  EXPECT_EQ(bad("jz", {0.6, 0.0, 0.2, 0.3}), 0);
+  EXPECT_EQ(bad("jz", {0.1, 1.1, 0.2, 0.3}), 1);
+  EXPECT_EQ(bad("jz", {0.1, 0.5, 0.2, INF}), 4);    // (the joint condition)
+  // the table's map: jz's coefficients become Walton's form
+  const LawParams p = law_spec(LawKind::JZ).make(std::vector<double>{0.1, 0.2, 0.3, 0.4}.data());
+  EXPECT_EQ(p.kind, LawKind::JZ);
+  EXPECT_DOUBLE_EQ(p.r, 0.8);
+  EXPECT_DOUBLE_EQ(p.rt_max, 0.6);
+  EXPECT_EQ(p.mu_s, 0.3);
+  EXPECT_EQ(p.mu_d, 0.4);
 }
 
 TEST(CollisionLimits, ElasticVersionConservesEnergy)

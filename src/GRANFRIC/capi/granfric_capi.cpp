@@ -4,22 +4,60 @@
 // styles use. Vectors are double[3]; see core/collision.h for conventions.
 #include "core/collision.h"
 #include "core/energy_loss.h"
+#include "core/law_table.h"
 
 using namespace granfric;
 
 extern "C" {
 
+// law: an index into the table of laws (core/law_table.h); -1: no such law, -2: coefficients
+// outside their ranges
 static int make_law(int law, const double *c, LawParams &p)
 {
-  if (law == 0)
-    p = LawParams::rough(c[0], c[1]);
-  else if (law == 1)
-    p = LawParams::walton(c[0], c[1], c[2]);
-  else if (law == 2)
-    p = LawParams::jz(c[0], c[1], c[2], c[3]);
-  else
-    return -1;
-  return p.check() ? -2 : 0;
+  if (law < 0 || law >= NLAWS) return -1;
+  const LawSpec &s = law_spec(law);
+  if (first_bad_coeff(s, c) >= 0) return -2;
+  p = s.make(c);
+  return 0;
+}
+
+// the table of laws: how many, and law `law`'s name and number of coefficients (nullptr and -1
+// for no such law)
+int granfric_law_count()
+{
+  return NLAWS;
+}
+
+const char *granfric_law_name(int law)
+{
+  return law >= 0 && law < NLAWS ? law_spec(law).name : nullptr;
+}
+
+int granfric_law_ncoeff(int law)
+{
+  return law >= 0 && law < NLAWS ? law_spec(law).ncoeff : -1;
+}
+
+// coefficient k of law `law`: its name (nullptr for none) and its range in words into *range
+const char *granfric_law_coeff(int law, int k, const char **range)
+{
+  if (law < 0 || law >= NLAWS || k < 0 || k >= law_spec(law).ncoeff) return nullptr;
+  const LawCoeff &c = law_spec(law).coeff[k];
+  if (range) *range = c.range;
+  return c.name;
+}
+
+// whether coefficients c of law `law` are admissible: -1 if so, else as first_bad_coeff (a
+// coefficient's index, or the number of coefficients for the joint condition, whose words are
+// granfric_law_joint); -2: no such law
+int granfric_law_check(int law, const double *c)
+{
+  return law >= 0 && law < NLAWS ? first_bad_coeff(law_spec(law), c) : -2;
+}
+
+const char *granfric_law_joint(int law)
+{
+  return law >= 0 && law < NLAWS ? law_spec(law).joint : nullptr;
 }
 
 // Monte Carlo mean energy changes per collision over Gaussian velocities (Ttr) and spins (Trot)
@@ -51,7 +89,8 @@ int granfric_mean_energy_loss(int law, const double *c, double q, int dim, doubl
   return 0;
 }
 
-// law: 0 rough (c = r, beta), 1 walton (c = r, mu, rtmax), 2 jz (c = qn, qt, kappa_s, kappa_d).
+// law: the index of a law in the table (0 rough: c = r, beta; 1 walton: c = r, mu, rtmax; 2 jz:
+// c = qn, qt, kappa_s, kappa_d).
 // body = {vx,vy,vz, wx,wy,wz, m, a, q}; m2 = inf makes body 2 a wall.
 // out = {v1[3], w1[3], v2[3], w2[3], dE, gn, gt, cos_gamma, rt, sliding, energy_created} (19 values)
 int granfric_collide(int law, const double *c, const double *body1, const double *body2,

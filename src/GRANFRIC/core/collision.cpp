@@ -8,15 +8,6 @@
 
 namespace granfric {
 
-const char *LawParams::check() const
-{
-  if (!(r >= 0.0 && r <= 1.0)) return "normal restitution r must be in [0, 1]";
-  if (!(rt_max >= -1.0 && rt_max <= 1.0)) return "tangential restitution must be in [-1, 1]";
-  if (!(mu_s >= 0.0)) return "friction coefficient must be >= 0";
-  if (!(mu_d >= 0.0)) return "friction coefficient must be >= 0";
-  return nullptr;
-}
-
 double Collision::gamma() const
 {
   return std::acos(std::max(-1.0, std::min(1.0, cos_gamma)));

@@ -20,7 +20,8 @@ constexpr double INF = std::numeric_limits<double>::infinity();
 
 enum class LawKind { ROUGH, WALTON, JZ };
 
-// Coefficients of one collision law (one type pair, or particle-wall).
+// Coefficients of one collision law (one type pair, or particle-wall), as the table of laws
+// (law_table.h) makes them from a user's coefficients.
 // All three laws share one map (Walton's with a static and a dynamic friction coefficient):
 //   rough : r, rt_max = beta, mu_s = mu_d = inf (constant tangential restitution)
 //   walton: r, rt_max, mu_s = mu_d = mu
@@ -45,8 +46,6 @@ struct LawParams {
   // neither normal nor tangential motion loses energy and spins are untouched
   LawParams elastic() const { return {kind, 1.0, -1.0, INF, INF}; }
 
-  // first violated range as a message, or nullptr when the values are admissible
-  const char *check() const;
   // can a collision gain energy? (Jenkins-Zhang with kappa_d > kappa_s: a sliding contact then
   // takes a larger tangential impulse than sticking would)
   bool can_create_energy() const { return kind == LawKind::JZ && mu_d > mu_s; }
