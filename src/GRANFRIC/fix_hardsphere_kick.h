@@ -6,8 +6,9 @@
    Homogeneous stochastic driving (Herbst et al. 2005, eqs 7-9): at the times k/f_dr every atom
    of the group gets an independent Gaussian velocity increment of standard deviation v_dr per
    translational component. The kicks happen at their exact times inside the event-driven step
-   of fix hardsphere/ed, which calls this fix; the random numbers of an atom depend only on
-   (seed, atom ID, kick index), so a run is the same on any number of MPI ranks.
+   of fix hardsphere/ed, which calls this fix. The kicks themselves are the core's (core/kicks.h);
+   this fix holds their parameters, the next kick's index (kept in restart files) and the sum of
+   the momentum shift over the ranks.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -21,7 +22,7 @@ FixStyle(hardsphere/kick,FixHardsphereKick);
 
 #include "fix.h"
 
-#include "event_driven.h"
+#include "kicks.h"
 
 namespace LAMMPS_NS {
 
@@ -46,17 +47,13 @@ class FixHardsphereKick : public Fix {
   // the shift of kick k over the group's atoms on all ranks (collective; zero without
   // momentum yes), the same bit for bit on any number of ranks
   granfric::Vec3 momentum_shift(long k, int dim) const;
-  // the Gaussian number n (0..5) of an atom at kick k: a pure function of (seed, tag, k, n)
-  static double gaussian(long seed, long tag, long k, int n);
   // bounds (doc/fix_hardsphere_kick.rst): kicks per step, kicks per step times atoms, the kick
   // index of a run, v_dr
   static constexpr double MAX_KICKS_PER_STEP = 1e6, MAX_ATOM_KICKS_PER_STEP = 1e9;
   static constexpr double MAX_KICK_INDEX = 1e15, MAX_VDR = 1e150;
 
  private:
-  double fdr, vdr, spin;
-  long seed;
-  int momentum;
+  granfric::Kicks law;  // f_dr, v_dr, seed, momentum, spin
   long next_kick;      // index of the next kick (restart)
   bool started;
   void check_kicks_per_step() const;

@@ -165,3 +165,30 @@ def collide_batch(law, coeffs, v1, w1, v2, w2, n, m=1.0, a=0.5, q=0.4, want_dE=F
     if rc != 0:
         raise ValueError(f"invalid {law} coefficients {coeffs}")
     return dE
+
+
+def kick(k, tags, m, a, v, w, fdr=1.0, vdr=1.0, seed=1, momentum=True, spin=0.0, q=0.4, dim=3):
+    """Kick k of the core's random driving (core/kicks.h, the kicks of fix hardsphere/kick with
+    the same f_dr, v_dr, seed, momentum and spin) applied in place to velocities v and spins w
+    ((n, 3) C-contiguous float64) of particles with IDs tags, masses m and radii a (n each)."""
+    n = len(tags)
+    t = np.ascontiguousarray(tags, dtype=np.int64)
+    mm = np.ascontiguousarray(m, dtype=float)
+    aa = np.ascontiguousarray(a, dtype=float)
+    for x in (v, w):
+        if not (isinstance(x, np.ndarray) and x.dtype == np.float64 and x.shape == (n, 3)
+                and x.flags.c_contiguous and x.flags.writeable):
+            raise ValueError("kick needs writeable (n, 3) C-contiguous float64 v and w")
+    if mm.shape != (n,) or aa.shape != (n,):
+        raise ValueError("kick needs n masses and n radii")
+    d = ctypes.POINTER(ctypes.c_double)
+    f = lib().granfric_kick
+    f.argtypes = [ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_long, ctypes.c_int,
+                  ctypes.c_int, ctypes.c_long, ctypes.c_long, ctypes.POINTER(ctypes.c_long), d,
+                  d, ctypes.c_double, d, d]
+    f.restype = ctypes.c_int
+    if f(fdr, vdr, spin, seed, int(momentum), dim, k, n,
+         t.ctypes.data_as(ctypes.POINTER(ctypes.c_long)), mm.ctypes.data_as(d),
+         aa.ctypes.data_as(d), q, v.ctypes.data_as(d), w.ctypes.data_as(d)) != 0:
+        raise ValueError(f"invalid kick parameters fdr={fdr} vdr={vdr} spin={spin} seed={seed} "
+                         f"q={q} dim={dim}")

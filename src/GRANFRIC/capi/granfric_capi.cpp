@@ -4,7 +4,11 @@
 // styles use. Vectors are double[3]; see core/collision.h for conventions.
 #include "core/collision.h"
 #include "core/energy_loss.h"
+#include "core/kicks.h"
 #include "core/law_table.h"
+
+#include <algorithm>
+#include <cstdint>
 
 using namespace granfric;
 
@@ -154,6 +158,40 @@ int granfric_collide_batch(int law, const double *c, long n, double m, double a,
     r.v2.to(v2 + o);
     r.w2.to(w2 + o);
     if (dE) dE[k] = r.dE;
+  }
+  return 0;
+}
+// Kick k of the core's random driving (core/kicks.h, as fix hardsphere/kick applies it) to n
+// particles with IDs tags, masses m, radii a and shape factor q, in place on their velocities v
+// and spins w (n*3 doubles each): fdr, vdr, spin, seed and momentum (0 or 1) as the fix's
+// keywords, dim 2 or 3. The momentum shift is summed over these n particles. Returns 0, or -1
+// for inadmissible parameters.
+int granfric_kick(double fdr, double vdr, double spin, long seed, int momentum, int dim, long k,
+                  long n, const long *tags, const double *m, const double *a, double q, double *v,
+                  double *w)
+{
+  if (!(fdr > 0.0) || !(vdr >= 0.0) || !(spin >= 0.0) || seed <= 0 || (dim != 2 && dim != 3) ||
+      !(q > 0.0 && q <= 1.0) || n < 0)
+    return -1;
+  Kicks kicks;
+  kicks.fdr = fdr;
+  kicks.vdr = vdr;
+  kicks.spin = spin;
+  kicks.seed = seed;
+  kicks.momentum = momentum != 0;
+  double mmax = 0.0;
+  for (long i = 0; i < n; i++) mmax = std::max(mmax, m[i]);
+  Kicks::MomentumSums s = kicks.momentum_sums(mmax, (double) n);
+  if (kicks.momentum)
+    for (long i = 0; i < n; i++) kicks.add(s, tags[i], m[i], k, dim);
+  const Vec3 dvcm = kicks.shift(s);
+  for (long i = 0; i < n; i++) {
+    Vec3 x, vi(v[3 * i], v[3 * i + 1], v[3 * i + 2]), wi(w[3 * i], w[3 * i + 1], w[3 * i + 2]);
+    double t = 0.0, ai = a[i], mi = m[i], tl = -INF;
+    int16_t type = 1;
+    kicks.apply(EDParticle(x, vi, t, ai, wi, mi, q, tl, type), tags[i], k, dim, dvcm);
+    vi.to(v + 3 * i);
+    wi.to(w + 3 * i);
   }
   return 0;
 }

@@ -3,6 +3,8 @@
 // GRANFRIC physics core: the exact event-driven loop (see event_driven.h).
 #include "event_driven.h"
 
+#include "counter_rng.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -908,32 +910,20 @@ static void add_virial(double *w, const Vec3 &r, const Vec3 &dP)
   w[5] += r.y * dP.z;
 }
 
-// counter-based uniform numbers in (0, 1) from a key
-static inline uint64_t mix64(uint64_t z)
-{
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
 Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t)
 {
   const EDParticleView p = view(i);
   uint64_t tbits;
   std::memcpy(&tbits, &t, sizeof(tbits));
-  uint64_t key = mix64(mix64(w.seed) ^ (uint64_t) this->key(i)) ^ tbits;
-  auto uniform = [&key]() {
-    key = mix64(key);
-    return ((key >> 11) + 0.5) * 0x1.0p-53;
-  };
-  auto gauss = [&]() { return std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * M_PI * uniform()); };
+  CounterStream rng{mix64(mix64(w.seed) ^ (uint64_t) this->key(i)) ^ tbits};
+  auto uniform = [&rng]() { return rng.uniform(); };
+  auto gauss = [&]() { return gauss_radius(uniform()) * std::cos(2.0 * M_PI * uniform()); };
   const double sv = std::sqrt(w.T / p.m), sw = std::sqrt(w.T / (p.q * p.m * p.a * p.a));
   Collision c;
   Vec3 v;
   for (int d = 0; d < 3; d++)
     if (d != w.dim && d < opt.dim) v[d] = sv * gauss();
-  v[w.dim] = n[w.dim] * sv * std::sqrt(-2.0 * std::log(uniform()));    // flux: v_n exp(-v_n^2/2)
+  v[w.dim] = n[w.dim] * sv * gauss_radius(uniform());    // flux: v_n exp(-v_n^2/2)
   Vec3 wv;
   if (opt.dim == 2)
     wv.z = sw * gauss();
