@@ -834,35 +834,23 @@ void HardsphereDomainWindow::commit(double t0, double dt)
 }
 
 // ------------------------------------------------ the statistics of all ranks
+// (and the atoms predicted afresh, summed with them)
 void HardsphereDomainWindow::sum_statistics()
 {
   granfric::EDStats &last = fix.last;
-  long lsum[8] = {last.collisions, last.sliding, last.tc_elastic, last.energy_created,
-                  last.crossings, last.wall_collisions, last.global_events, repredicted};
-  long gsum[8];
-  MPI_Allreduce(lsum, gsum, 8, MPI_LONG, MPI_SUM, world);
-  double esum[9] = {last.dE, last.dE_wall, last.injected}, gesum[9];
-  std::copy(last.virial, last.virial + 6, esum + 3);
-  MPI_Allreduce(esum, gesum, 9, MPI_DOUBLE, MPI_SUM, world);
+  const long events = last.global_events;    // (every rank processes every kick: no sum)
+  std::vector<long> counts;
+  std::vector<double> sums;
+  last.flatten(counts, sums);
+  counts.push_back(repredicted);
+  sum_over_ranks(counts, MPI_LONG, world);
+  sum_over_ranks(sums, MPI_DOUBLE, world);
+  last.unflatten(counts.data(), sums.data());
   long lmax = last.max_collisions_one_particle, gmax;
   MPI_Allreduce(&lmax, &gmax, 1, MPI_LONG, MPI_MAX, world);
-  sum_over_ranks(last.gamma_hist, MPI_LONG, world);
-  sum_over_ranks(last.wall_hits, MPI_LONG, world);
-  sum_over_ranks(last.wall_impulse, MPI_DOUBLE, world);
-  sum_over_ranks(last.wall_work, MPI_DOUBLE, world);
-  last.collisions = gsum[0];
-  last.sliding = gsum[1];
-  last.tc_elastic = gsum[2];
-  last.energy_created = gsum[3];
-  last.crossings = gsum[4];
-  last.wall_collisions = gsum[5];
-  last.global_events = fix.kicks.empty() ? 0 : last.global_events;
-  last.dE = gesum[0];
-  last.dE_wall = gesum[1];
-  last.injected = gesum[2];
-  std::copy(gesum + 3, gesum + 9, last.virial);
   last.max_collisions_one_particle = gmax;
-  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) gsum[7];
+  last.global_events = events;
+  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) counts.back();
 }
 
 double HardsphereDomainWindow::memory_usage() const

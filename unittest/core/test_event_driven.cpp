@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <type_traits>
 
 using namespace granfric;
 using namespace granfric_test;
@@ -997,3 +998,56 @@ TEST(Prediction, CrossingTime)
 }
 
 }    // namespace
+
+// the one list of summed statistics: add() sums every field (vectors grow), the maximum is a
+// maximum, and flatten/unflatten carry every summed field through flat arrays
+TEST(EDStatsFields, AddFlattenUnflatten)
+{
+  EDStats a, b;
+  long n = 1;
+  double x = 0.5;
+  auto fill = [&](EDStats &s, size_t walls) {
+    s.wall_hits.assign(walls, 0);
+    s.wall_impulse.assign(3 * walls, 0.0);
+    s.wall_work.assign(walls, 0.0);
+    s.gamma_hist.assign(4, 0);
+    EDStats::each_sum(
+        [&](auto &f) {
+          using T = std::decay_t<decltype(f)>;
+          if constexpr (std::is_same_v<T, long>) f = n++;
+          else if constexpr (std::is_same_v<T, double>) f = x += 0.25;
+          else for (auto &e : f) e = (typename T::value_type) (n++);
+        },
+        s);
+  };
+  fill(a, 1);
+  fill(b, 2);
+  a.max_collisions_one_particle = 7;
+  b.max_collisions_one_particle = 3;
+  EDStats sum = a;
+  sum.add(b);
+  EXPECT_EQ(sum.collisions, a.collisions + b.collisions);
+  EXPECT_EQ(sum.virial[5], a.virial[5] + b.virial[5]);
+  ASSERT_EQ(sum.wall_hits.size(), 2u);
+  EXPECT_EQ(sum.wall_hits[1], b.wall_hits[1]);
+  EXPECT_EQ(sum.wall_work[0], a.wall_work[0] + b.wall_work[0]);
+  EXPECT_EQ(sum.max_collisions_one_particle, 7);
+  std::vector<long> counts;
+  std::vector<double> sums;
+  sum.flatten(counts, sums);
+  EXPECT_EQ(counts.size(), 7u + 2u + 4u);
+  EXPECT_EQ(sums.size(), 3u + 6u + 6u + 2u);
+  EDStats back;
+  back.wall_hits.assign(2, 0);
+  back.wall_impulse.assign(6, 0.0);
+  back.wall_work.assign(2, 0.0);
+  back.gamma_hist.assign(4, 0);
+  back.unflatten(counts.data(), sums.data());
+  std::vector<long> c2;
+  std::vector<double> s2;
+  back.flatten(c2, s2);
+  EXPECT_EQ(c2, counts);
+  EXPECT_EQ(s2, sums);
+  EXPECT_EQ(back.dE_wall, sum.dE_wall);
+  EXPECT_EQ(back.gamma_hist[3], sum.gamma_hist[3]);
+}

@@ -12,9 +12,14 @@
 
 namespace granfric {
 
-// a += b elementwise (a grows to b's size)
+// a += b; for vectors elementwise (a grows to b's size)
 template <class T>
-static void add_to(std::vector<T> &a, const std::vector<T> &b)
+static void add_into(T &a, const T &b)
+{
+  a += b;
+}
+template <class T>
+static void add_into(std::vector<T> &a, const std::vector<T> &b)
 {
   if (a.size() < b.size()) a.resize(b.size(), T(0));
   for (size_t k = 0; k < b.size(); k++) a[k] += b[k];
@@ -22,22 +27,41 @@ static void add_to(std::vector<T> &a, const std::vector<T> &b)
 
 void EDStats::add(const EDStats &o)
 {
-  collisions += o.collisions;
-  sliding += o.sliding;
-  tc_elastic += o.tc_elastic;
-  energy_created += o.energy_created;
-  crossings += o.crossings;
+  each_sum([](auto &a, const auto &b) { add_into(a, b); }, *this, o);
   max_collisions_one_particle = std::max(max_collisions_one_particle, o.max_collisions_one_particle);
-  dE += o.dE;
-  wall_collisions += o.wall_collisions;
-  dE_wall += o.dE_wall;
-  injected += o.injected;
-  global_events += o.global_events;
-  for (int k = 0; k < 6; k++) virial[k] += o.virial[k];
-  add_to(gamma_hist, o.gamma_hist);
-  add_to(wall_hits, o.wall_hits);
-  add_to(wall_impulse, o.wall_impulse);
-  add_to(wall_work, o.wall_work);
+}
+
+namespace {
+  // the values of a field appended to the flat array of its kind, or taken from it
+  struct Flattener {
+    std::vector<long> &counts;
+    std::vector<double> &sums;
+    void operator()(const long &x) const { counts.push_back(x); }
+    void operator()(const double &x) const { sums.push_back(x); }
+    void operator()(const std::vector<long> &x) const { counts.insert(counts.end(), x.begin(), x.end()); }
+    void operator()(const std::vector<double> &x) const { sums.insert(sums.end(), x.begin(), x.end()); }
+  };
+  struct Unflattener {
+    const long *counts;
+    const double *sums;
+    void operator()(long &x) { x = *counts++; }
+    void operator()(double &x) { x = *sums++; }
+    void operator()(std::vector<long> &x) { for (auto &y : x) y = *counts++; }
+    void operator()(std::vector<double> &x) { for (auto &y : x) y = *sums++; }
+  };
+}    // namespace
+
+void EDStats::flatten(std::vector<long> &counts, std::vector<double> &sums) const
+{
+  counts.clear();
+  sums.clear();
+  each_sum(Flattener{counts, sums}, *this);
+}
+
+void EDStats::unflatten(const long *counts, const double *sums)
+{
+  Unflattener u{counts, sums};
+  each_sum(u, *this);
 }
 
 // the shape factor of every type (index 0 unused): the options', or 0.4 (solid spheres)

@@ -131,7 +131,25 @@ struct EDStats {
   std::vector<double> wall_impulse, wall_work;
   long global_events = 0;
   std::vector<long> gamma_hist;         // impact angles, EDOptions::gamma_bins bins
-  void add(const EDStats &o);
+  void add(const EDStats &o);           // (the vectors grow to o's sizes)
+
+  // Every summed field (all but max_collisions_one_particle, a maximum), in one fixed order:
+  // f(field of s...) for each, with the fields of every s given (long, double,
+  // std::vector<long> or std::vector<double>, by reference). The one list of the fields, for
+  // sums over windows (add) and over ranks (flatten).
+  template <class F, class... S>
+  static void each_sum(F &&f, S &...s)
+  {
+    f(s.collisions...), f(s.sliding...), f(s.tc_elastic...), f(s.energy_created...);
+    f(s.crossings...), f(s.wall_collisions...), f(s.global_events...);
+    f(s.dE...), f(s.dE_wall...), f(s.injected...);
+    for (int k = 0; k < 6; k++) f(s.virial[k]...);
+    f(s.wall_hits...), f(s.wall_impulse...), f(s.wall_work...), f(s.gamma_hist...);
+  }
+  // the summed fields as two flat arrays (vectors element by element) and back from arrays
+  // of those sizes: what a sum over ranks reduces
+  void flatten(std::vector<long> &counts, std::vector<double> &sums) const;
+  void unflatten(const long *counts, const double *sums);
 };
 
 // One collision of a window, for the cross-rank consistency check of domain-decomposed runs:
