@@ -14,6 +14,7 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
+#include "hardsphere_host.h"
 #include "pair_hardsphere.h"
 #include "update.h"
 
@@ -28,24 +29,10 @@ ComputeHardsphereTemp::ComputeHardsphereTemp(LAMMPS *lmp, int narg, char **arg) 
   while (iarg < narg) {
     if (strcmp(arg[iarg], "inertia") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "compute hardsphere/temp inertia", error);
-      const std::string val = arg[iarg + 1];
-      if (val == "sphere")
-        qshape = 0.4;
-      else if (val == "disc") {
-        if (domain->dimension != 2)
-          error->all(FLERR, "Compute hardsphere/temp inertia disc requires a 2d simulation");
-        qshape = 0.5;
-      }
-      else if (utils::is_double(val)) {
-        qshape = utils::numeric(FLERR, val, false, lmp);
-        if (!(qshape > 0.0 && qshape <= 1.0))
-          error->all(FLERR, "Compute hardsphere/temp inertia q = {} is out of range (0 < q <= 1)",
-                     val);
-      } else
-        error->all(FLERR,
-                   "Compute hardsphere/temp inertia must be sphere, disc or a number 0 < q <= 1, "
-                   "not {}",
-                   val);
+      bool disc;
+      qshape = hardsphere::parse_inertia(lmp, "Compute hardsphere/temp", arg[iarg + 1], disc);
+      if (disc && domain->dimension != 2)
+        error->all(FLERR, "Compute hardsphere/temp inertia disc requires a 2d simulation");
       iarg += 2;
     } else
       error->all(FLERR, "Unknown compute hardsphere/temp keyword: {} (allowed: inertia)",

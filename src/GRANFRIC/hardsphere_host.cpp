@@ -30,6 +30,20 @@ namespace hardsphere {
     lmp->error->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
   }
 
+  double parse_inertia(LAMMPS *lmp, const std::string &who, const std::string &value, bool &disc)
+  {
+    disc = value == "disc";
+    if (value == "sphere") return 0.4;
+    if (disc) return 0.5;
+    if (!utils::is_double(value))
+      lmp->error->all(FLERR, "{} inertia must be sphere, disc or a number 0 < q <= 1, not {}", who,
+                      value);
+    const double q = utils::numeric(FLERR, value, false, lmp);
+    if (!(q > 0.0 && q <= 1.0))
+      lmp->error->all(FLERR, "{} inertia q = I/(m a^2) = {} is out of range (0 < q <= 1)", who, value);
+    return q;
+  }
+
   FarWrap::FarWrap(const Domain *domain)
   {
     const double inf = std::numeric_limits<double>::infinity();

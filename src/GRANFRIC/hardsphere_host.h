@@ -10,6 +10,7 @@
 #include "lmptype.h"
 
 #include <cmath>
+#include <string>
 
 namespace LAMMPS_NS {
 class Domain;
@@ -24,6 +25,11 @@ namespace hardsphere {
 
   // an error unless a fix hardsphere/ed is defined: fix `style` `id` needs it, because it `what`
   void require_ed(LAMMPS *lmp, const char *style, const char *id, const char *what);
+
+  // The inertia keyword of the pair styles and compute hardsphere/temp: sphere (q = I/(m a^2)
+  // = 2/5), disc (1/2; the caller checks that the simulation is 2d) or a number 0 < q <= 1.
+  // Returns q and sets disc; errors in the name of who (a style).
+  double parse_inertia(LAMMPS *lmp, const std::string &who, const std::string &value, bool &disc);
 
   // Far-out coordinates at the end of a step. LAMMPS wraps an atom back into a periodic box
   // when it reneighbors; an atom more than half a period outside the box (a step longer than a

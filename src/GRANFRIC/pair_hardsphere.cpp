@@ -6,6 +6,7 @@
 
 #include "pair_hardsphere.h"
 
+#include "hardsphere_host.h"
 #include "law_table.h"
 
 #include "atom.h"
@@ -104,25 +105,9 @@ void PairHardsphere::settings(int narg, char **arg)
   while (iarg < narg) {
     if (strcmp(arg[iarg], "inertia") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style inertia", error);
-      const std::string val = arg[iarg + 1];
-      if (val == "sphere") {
-        qshape = 0.4;
-        inertia_style = SPHERE;
-      } else if (val == "disc") {
-        qshape = 0.5;
-        inertia_style = DISC;
-      } else {
-        if (!utils::is_double(val))
-          error->all(FLERR,
-                     "Pair style {} inertia must be sphere, disc or a number 0 < q <= 1, not {}",
-                     law_style(lawkind), val);
-        qshape = utils::numeric(FLERR, val, false, lmp);
-        inertia_style = NUMBER;
-        if (!(qshape > 0.0 && qshape <= 1.0))
-          error->all(FLERR,
-                     "Pair style {} inertia q = I/(m a^2) = {} is out of range (0 < q <= 1)",
-                     law_style(lawkind), val);
-      }
+      bool disc;
+      qshape = hardsphere::parse_inertia(lmp, "Pair style " + law_style(lawkind), arg[iarg + 1], disc);
+      inertia_style = disc ? DISC : (strcmp(arg[iarg + 1], "sphere") == 0 ? SPHERE : NUMBER);
       iarg += 2;
     } else {
       error->all(FLERR, "Unknown pair style {} keyword: {} (allowed: inertia)",

@@ -1057,7 +1057,7 @@ TEST_F(FixErrors, Computes)
   EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp inertia cube",
                    "inertia must be sphere, disc or a number 0 < q <= 1, not cube");
   EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp inertia 1.2",
-                   "inertia q = 1.2 is out of range \\(0 < q <= 1\\)");
+                   "inertia q = I/\\(m a\\^2\\) = 1.2 is out of range \\(0 < q <= 1\\)");
   EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp inertia", "Illegal compute hardsphere/temp inertia");
   EXPECT_LMP_ERROR(lmp.get(), "compute t all hardsphere/temp mass 1",
                    "Unknown compute hardsphere/temp keyword: mass \\(allowed: inertia\\)");
