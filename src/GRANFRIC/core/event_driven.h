@@ -11,6 +11,13 @@
 // scheduled event per particle, invalidation by collision counters, a calendar queue
 // (event_queue.h), and the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
 // the window (periodic images are tracked by integer offsets, not by moving particles).
+//
+// One class, its roles in one file each: the event loop, pair collisions and the particles'
+// slots (event_driven.cpp), the cell grid and its crossings (cells.cpp), the search for
+// collision candidates (candidate_search.cpp), neighbour lists (neighbour_lists.cpp), wall motion
+// and contact times (wall_motion.cpp), the response at walls (wall_response.cpp), statistics and
+// records of the collisions (statistics.cpp). The collision laws are collision.h, their table
+// law_table.h, driving by kicks kicks.h.
 #ifndef GRANFRIC_CORE_EVENT_DRIVEN_H
 #define GRANFRIC_CORE_EVENT_DRIVEN_H
 
@@ -446,6 +453,11 @@ class EventDriven {
   std::vector<ParticleTally> PT;         // (tally_particles)
   // particle i's part in a collision at t: r (x) dP (halved for a pair), its energy changes
   void tally(int i, const Vec3 &r, const Vec3 &dP, double t, double dE_tr, double dE_rot, bool wall);
+  // the one hook per collision into the statistics and records (statistics.cpp)
+  void record_pair(int i, int j, double t, const Vec3 &r, const Vec3 &n, const Body &b1, const Body &b2,
+                   const Collision &c, bool tc_elastic, long ni, long nj);
+  void record_wall(int i, int k, double t, const Vec3 &n, const Vec3 &dP, const Collision &c,
+                   double dE_tr, double dE_rot, bool tc_elastic, long ni);
   const uint8_t *record_only = nullptr;
   double fast_s2 = INF;                  // track_fast(): the threshold, and who reached it
   bool fast_on = false;
@@ -548,7 +560,20 @@ class EventDriven {
   }
   void cell_insert(int i);
   void cell_remove(int i);
-  void advance(int i, double t);
+  // particle i's stored state brought to window time t (its position as pos() gives it)
+  void advance(int i, double t)
+  {
+    Hot &p = H[i];
+    if (p.t == t) return;
+    const double dt = t - p.t;
+    if (has_gravity) {
+      p.x += dt * p.v + (0.5 * dt * dt) * opt.gravity;
+      p.v += dt * opt.gravity;
+    } else {
+      p.x += dt * p.v;
+    }
+    p.t = t;
+  }
   // everything, against all neighbouring cells (pairs = false: crossing and walls only, the
   // collision candidate cleared)
   void predict(int i, bool pairs = true);

@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+// GRANFRIC physics core: the search for collision candidates (see event_driven.h): pair contact times against
+// the particles of neighbouring cells or of a neighbour list, all at once at a start, and the
+// overlap check.
+#include "event_driven.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace granfric {
+
+// collision candidates of i among the particles of the cells at offsets dlo..dhi (inclusive)
+// around its cell; periodic images by integer offsets
+void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+{
+  scan_in<false>(i, xi, vi, dlo, dhi);
+}
+
+void EventDriven::scan_full(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  static const int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};    // (in 2d z is not scanned)
+  scan_in<true>(i, xi, vi, lo, hi);
+}
+
+template <bool FULL>
+void EventDriven::scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+{
+  if (opt.dim == 2) {
+    if (has_gravity)
+      scan_t<2, true, FULL>(i, xi, vi, dlo, dhi);
+    else
+      scan_t<2, false, FULL>(i, xi, vi, dlo, dhi);
+  } else {
+    if (has_gravity)
+      scan_t<3, true, FULL>(i, xi, vi, dlo, dhi);
+    else
+      scan_t<3, false, FULL>(i, xi, vi, dlo, dhi);
+  }
+}
+
+// one candidate j of i at the image shift o (j's position + o L): its contact time, kept as
+// i's collision candidate when it is the earliest so far (i's state xi, vi now, its radius pa)
+template <int DIM, bool GRAV>
+inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, const Vec3 &xi,
+                                                              const Vec3 &vi, double pa, int j,
+                                                              int o0, int o1, int o2)
+{
+  const Hot &q = H[j];
+  const Vec3 g = opt.gravity;
+  const double dtj = now - q.t;
+  double x0 = q.x.x + dtj * q.v.x, x1 = q.x.y + dtj * q.v.y;
+  double x2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
+  double v0 = q.v.x, v1 = q.v.y, v2 = DIM == 3 ? q.v.z : 0.0;
+  if (o0 | o1 | o2) {
+    x0 += o0 * L.x;
+    x1 += o1 * L.y;
+    if (DIM == 3) x2 += o2 * L.z;
+  }
+  if (GRAV) {
+    const double h = 0.5 * dtj * dtj;
+    x0 += h * g.x;
+    x1 += h * g.y;
+    v0 += dtj * g.x;
+    v1 += dtj * g.y;
+    if (DIM == 3) {
+      x2 += h * g.z;
+      v2 += dtj * g.z;
+    }
+  }
+  const double t = now + pair_contact_time<DIM>(xi.x - x0, xi.y - x1, xi.z - x2, vi.x - v0,
+                                                vi.y - v1, DIM == 3 ? vi.z - v2 : 0.0, pa + q.a);
+  if (t < s.ct) {
+    // two particles whose last collisions were with each other (same periodic image)
+    // separate in free flight: relative motion is a straight line, they are no candidates
+    // (tested only here, for a would-be candidate: the same outcome as skipping them)
+    if (C[i].last_partner == j && C[j].last_partner == i && o0 == s.last_off[0] &&
+        o1 == s.last_off[1] && o2 == s.last_off[2])
+      return;
+    s.ct = t;
+    s.cpartner = j;
+    s.ccount = C[j].ncoll;
+    s.coff[0] = o0;
+    s.coff[1] = o1;
+    s.coff[2] = o2;
+  }
+}
+
+// scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,
+// dhi = -1, +1 in every dimension) or not, known at compile time. In 2d nothing
+// moves in z (v.z = 0, g.z = 0): the z terms of the relative motion vanish except the constant
+// z distance, and every operation left is the one of the 3d arithmetic in the same order, so
+// the contact times are the same numbers bit for bit.
+template <int DIM, bool GRAV, bool FULL>
+void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+{
+  Sched &s = S[i];
+  const double pa = H[i].a;
+  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
+  const int16_t *c = s.c;
+  const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
+  const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
+  const int x0 = FULL ? -1 : dlo[0], x1 = FULL ? 1 : dhi[0];
+  // the usual case: the block of cells lies inside the grid (no wrapping, no edges)
+  bool inside = c[0] + x0 >= 0 && c[0] + x1 < nc[0] && c[1] + ylo >= 0 && c[1] + yhi < nc[1];
+  if (DIM == 3) inside = inside && c[2] + zlo >= 0 && c[2] + zhi < nc[2];
+  if (inside) {
+    const int n0 = nc[0], n1 = nc[1];
+    const Image *IM = img.data();
+    const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
+    // the first particle of every occupied cell, in cell order, gathered without branches
+    // (which cells are empty is random: a branch per cell would be mispredicted often)
+    int first[27], nfirst = 0;
+#pragma GCC unroll 3
+    for (int dz = zlo; dz <= zhi; dz++)
+#pragma GCC unroll 3
+      for (int dy = ylo; dy <= yhi; dy++) {
+        const int *h = base + (dz * n1 + dy) * n0;
+#pragma GCC unroll 3
+        for (int dx = x0; dx <= x1; dx++) {
+          const int j = h[dx];
+          first[nfirst] = j;
+          nfirst += j >= 0;
+        }
+      }
+    for (int f = 0; f < nfirst; f++)
+      for (int j = first[f]; j >= 0; j = IM[j].next)
+        if (j != i) offer<DIM, GRAV>(i, s, xi, vi, pa, j, pk[0] - IM[j].k[0], pk[1] - IM[j].k[1],
+                                     DIM == 3 ? pk[2] - IM[j].k[2] : 0);
+    return;
+  }
+  for (int dz = zlo; dz <= zhi; dz++) {
+    int uz = c[2] + dz, kz = 0;
+    if (uz < 0) { if (!opt.periodic[2]) continue; uz += nc[2]; kz = -1; }
+    else if (uz >= nc[2]) { if (!opt.periodic[2]) continue; uz -= nc[2]; kz = 1; }
+    for (int dy = ylo; dy <= yhi; dy++) {
+      int uy = c[1] + dy, ky = 0;
+      if (uy < 0) { if (!opt.periodic[1]) continue; uy += nc[1]; ky = -1; }
+      else if (uy >= nc[1]) { if (!opt.periodic[1]) continue; uy -= nc[1]; ky = 1; }
+      for (int dx = x0; dx <= x1; dx++) {
+        int ux = c[0] + dx, kx = 0;
+        if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
+        else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
+        const int cell = (uz * nc[1] + uy) * nc[0] + ux;
+        for (int j = head[cell]; j >= 0; j = img[j].next)
+          if (j != i) offer<DIM, GRAV>(i, s, xi, vi, pa, j, pk[0] + kx - img[j].k[0], pk[1] + ky - img[j].k[1],
+                                       DIM == 3 ? pk[2] + kz - img[j].k[2] : 0);
+      }
+    }
+  }
+}
+
+// collision candidates of i among its listed neighbours (no gravity with lists)
+void EventDriven::scan_list(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  // the cell shift of an entry's code, one per component
+  static constexpr int8_t KX[27] = {-1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1};
+  static constexpr int8_t KY[27] = {-1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1};
+  static constexpr int8_t KZ[27] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+  Sched &s = S[i];
+  const double pa = H[i].a;
+  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
+  const Entry *e = &NB[(size_t) i * LCAP];
+  const int n = NN[i];
+  const Image *IM = img.data();
+  for (int m = 0; m < n; m++) {
+    const int j = entry_j(e[m]), c = (int) (e[m] & 31);
+    const int *qk = IM[j].k;
+    if (opt.dim == 3)
+      offer<3, false>(i, s, xi, vi, pa, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], pk[2] + KZ[c] - qk[2]);
+    else
+      offer<2, false>(i, s, xi, vi, pa, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], 0);
+  }
+}
+
+long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) const
+{
+  long count = 0;
+  depth = 0.0;
+  key_i = key_j = -1;
+  const int n = (int) H.size();
+  const int reach[3] = {1, opt.dim > 1 ? 1 : 0, opt.dim > 2 ? 1 : 0};
+  for (int i = 0; i < n; i++) {
+    if (S[i].gone) continue;
+    const Hot &p = H[i];
+    const Vec3 xi = pos(i, now);
+    for (int dz = -reach[2]; dz <= reach[2]; dz++)
+      for (int dy = -reach[1]; dy <= reach[1]; dy++)
+        for (int dx = -reach[0]; dx <= reach[0]; dx++) {
+          const int d[3] = {dx, dy, dz};
+          int u[3], k[3];
+          bool skip = false;
+          for (int m = 0; m < 3 && !skip; m++) {
+            u[m] = S[i].c[m] + d[m];
+            k[m] = 0;
+            if (u[m] < 0 || u[m] >= nc[m]) {
+              // (with fewer than 3 cells a cell is reached at two or three image shifts: each
+              // is another image of its particles)
+              if (!opt.periodic[m]) skip = true;
+              k[m] = u[m] < 0 ? -1 : 1;
+              u[m] -= k[m] * nc[m];
+            }
+          }
+          if (skip) continue;
+          const int cell = (u[2] * nc[1] + u[1]) * nc[0] + u[0];
+          for (int j = head[cell]; j >= 0; j = img[j].next) {
+            if (j == i) continue;
+            const Hot &q = H[j];
+            const long ki = key(i), kj = key(j);
+            if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
+            if (!counted(ki <= kj ? i : j)) continue;
+            const int *pk = img[i].k, *qk = img[j].k;
+            const Vec3 shift((pk[0] + k[0] - qk[0]) * L.x, (pk[1] + k[1] - qk[1]) * L.y,
+                             (pk[2] + k[2] - qk[2]) * L.z);
+            const double dist = norm(xi - pos(j, now) - shift), sigma = p.a + q.a;
+            if (dist < sigma * (1.0 - tol)) {
+              count++;
+              if (sigma - dist > depth) {
+                depth = sigma - dist;
+                key_i = ki;
+                key_j = kj;
+              }
+            }
+          }
+        }
+  }
+  return count;
+}
+
+// predict() for every particle at once, all at time now (start of a window, after a global
+// event; no last partners): crossings and walls per particle, and each pair contact time
+// computed once and offered to both partners (the same time: both see one number). With fewer
+// than three cells in a dimension a neighbour cell can be reached at two image shifts, and every
+// particle scans its neighbourhood itself, as predict() does.
+// the contact time of i and j seen from i at the image shift o (j's position + o L), offered to
+// both as their collision candidate; every particle is at time now (its x and v are current)
+void EventDriven::offer_both(int i, int j, int o0, int o1, int o2)
+{
+  const Hot &p = H[i], &q = H[j];
+  Vec3 xj = q.x;
+  if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
+  const double t = now + pair_contact_time(p.x - xj, p.v - q.v, p.a + q.a);
+  Sched &si = S[i], &sj = S[j];
+  if (t < si.ct) {
+    si.ct = t;
+    si.cpartner = j;
+    si.ccount = C[j].ncoll;
+    si.coff[0] = o0, si.coff[1] = o1, si.coff[2] = o2;
+  }
+  if (t < sj.ct) {
+    sj.ct = t;
+    sj.cpartner = i;
+    sj.ccount = C[i].ncoll;
+    sj.coff[0] = -o0, sj.coff[1] = -o1, sj.coff[2] = -o2;
+  }
+}
+
+void EventDriven::predict_all()
+{
+  if (lists) {
+    predict_all_lists();
+    return;
+  }
+  const int n = (int) H.size();
+  bool half = true;
+  for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
+  for (int i = 0; i < n; i++) {
+    if (S[i].gone) {
+      no_events(i);
+      continue;
+    }
+    predict(i, !half);
+  }
+  if (!half) return;
+  // the forward half of the neighbourhood: 4 cells in 2d, 13 in 3d
+  int fwd[13][3], nfwd = 0;
+  for (int dz = 0; dz <= (opt.dim == 3 ? 1 : 0); dz++)
+    for (int dy = -1; dy <= 1; dy++)
+      for (int dx = -1; dx <= 1; dx++)
+        if (dz > 0 || dy > 0 || (dy == 0 && dx > 0)) {
+          fwd[nfwd][0] = dx, fwd[nfwd][1] = dy, fwd[nfwd][2] = dz;
+          nfwd++;
+        }
+  for (int i = 0; i < n; i++) {
+    if (S[i].gone) continue;
+    const int *pk = img[i].k;
+    const int16_t *c = S[i].c;
+    for (int j = img[i].next; j >= 0; j = img[j].next) {    // the rest of its own cell
+      const int *qk = img[j].k;
+      offer_both(i, j, pk[0] - qk[0], pk[1] - qk[1], pk[2] - qk[2]);
+    }
+    bool inside = true;
+    for (int d = 0; d < opt.dim; d++) inside = inside && c[d] >= 1 && c[d] + 1 < nc[d];
+    for (int f = 0; f < nfwd; f++) {
+      int u[3], k[3] = {0, 0, 0};
+      bool skip = false;
+      for (int d = 0; d < 3; d++) {
+        u[d] = c[d] + fwd[f][d];
+        if (inside || (u[d] >= 0 && u[d] < nc[d])) continue;
+        if (!opt.periodic[d]) skip = true;
+        k[d] = u[d] < 0 ? -1 : 1;
+        u[d] -= k[d] * nc[d];
+      }
+      if (skip) continue;
+      for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = img[j].next) {
+        const int *qk = img[j].k;
+        offer_both(i, j, pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]);
+      }
+    }
+  }
+}
+
+}    // namespace granfric
