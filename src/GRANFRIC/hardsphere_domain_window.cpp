@@ -94,6 +94,7 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   nlocal = atom->nlocal;
   dim = domain->dimension;
   step = dt;
+  received = 0;
   base = fix.core_options();
   bound_reach(dt);
   make_regions();
@@ -108,9 +109,10 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   influence_times();
   publish_histories();
   const int conflicts = fail ? 0 : compare_histories(dt);
-  int local[2] = {conflicts, fail ? 1 : 0}, global[2];
-  MPI_Allreduce(local, global, 2, MPI_INT, MPI_SUM, world);
+  long local[3] = {conflicts, fail ? 1 : 0, received}, global[3];
+  MPI_Allreduce(local, global, 3, MPI_LONG, MPI_SUM, world);
   double *totals = fix.totals;
+  totals[FixHardsphereED::STEP_COMM] += (double) global[2];
   totals[FixHardsphereED::STEP_CONFLICTS] = (double) (global[0] + global[1]);
   totals[FixHardsphereED::CONFLICTS] += totals[FixHardsphereED::STEP_CONFLICTS];
   // (check no keeps a conflicting window: a wrong result, to show what the check is for)
@@ -224,6 +226,8 @@ bool HardsphereDomainWindow::inside(const Region &R, const double *x, int *s) co
 }
 
 // ------------------------------------------------ send the atoms others need
+// Each atom goes to the ranks whose regions it lies in, and to no other: a rank receives only
+// its neighbours' boundary atoms, whatever the number of ranks.
 // (the test of inside() without the image shift: per other rank with atoms, the dimensions its
 // region does not cover whole, each with its interval and period, 0 if not periodic. A
 // periodic coordinate is brought to the interval's period by one shift either way, as inside()
@@ -233,13 +237,14 @@ bool HardsphereDomainWindow::inside(const Region &R, const double *x, int *s) co
 void HardsphereDomainWindow::send_copies(double t0)
 {
   struct Test {
-    int nd = 0, dims[3];
+    int rank = 0, nd = 0, dims[3];
     double lo[3], span[3], L[3];
   };
   std::vector<Test> tests;
   for (int r = 0; r < comm->nprocs; r++) {
     if (r == comm->me || bb[6 * r] > bb[6 * r + 3]) continue;
     Test T;
+    T.rank = r;
     for (int d = 0; d < 3; d++) {
       if (reg[r].whole[d]) continue;
       T.dims[T.nd] = d;
@@ -251,10 +256,14 @@ void HardsphereDomainWindow::send_copies(double t0)
     }
     tests.push_back(T);
   }
+  // (the atoms for each other rank in a list of their own, in ascending order; sent: the union)
   const double *xa = nlocal > 0 ? atom->x[0] : nullptr;
   sent.assign(nlocal, 0);
   char *sd = sent.data();
-  for (const Test &T : tests)
+  to_rank.clear();
+  to_start.assign(1, 0);
+  to_dest.clear();
+  for (const Test &T : tests) {
     for (int i = 0; i < nlocal; i++) {
       bool in = true;
       for (int j = 0; j < T.nd; j++) {
@@ -263,15 +272,55 @@ void HardsphereDomainWindow::send_copies(double t0)
         u += u < 0.0 ? T.L[j] : 0.0;
         in &= u >= 0.0 && u <= T.span[j];
       }
+      if (in) to_rank.push_back(i);
       sd[i] |= (char) in;
     }
+    to_start.push_back((int) to_rank.size());
+    to_dest.push_back(T.rank);
+  }
   sendlist.clear();    // (ascending)
   for (int i = 0; i < nlocal; i++)
     if (sent[i]) sendlist.push_back(i);
-  const size_t nsend = sendlist.size();
-  dsend.resize(nsend * NPACK);    // (every entry is set below)
-  for (size_t k = 0; k < nsend; k++) fix.atom_record(sendlist[k], t0).write(&dsend[k * NPACK]);
-  fix.allgather(dsend, drecv);
+  // each sent atom's record once, then copied to every rank that gets it
+  std::vector<double> &rec = hsend;    // (as scratch until the histories)
+  rec.resize(sendlist.size() * NPACK);
+  send_index.assign(nlocal, -1);
+  for (size_t k = 0; k < sendlist.size(); k++) {
+    fix.atom_record(sendlist[k], t0).write(&rec[k * NPACK]);
+    send_index[sendlist[k]] = (int) k;
+  }
+  scounts.assign(comm->nprocs, 0);
+  dsend.resize(to_rank.size() * NPACK);    // (every entry is set below)
+  for (size_t m = 0; m < to_dest.size(); m++) {
+    scounts[to_dest[m]] = (to_start[m + 1] - to_start[m]) * NPACK;
+    for (int k = to_start[m]; k < to_start[m + 1]; k++)
+      std::copy_n(&rec[(size_t) send_index[to_rank[k]] * NPACK], NPACK, &dsend[(size_t) k * NPACK]);
+  }
+  received += exchange(dsend, drecv);
+}
+
+// Each rank's buffer for every other rank (dsend-like: the parts for ranks in ascending order,
+// scounts doubles each) delivered: recv holds what the others sent to this rank, in rank order,
+// fix.counts and fix.displs say where each rank's part lies. Returns the doubles received.
+long HardsphereDomainWindow::exchange(const std::vector<double> &send, std::vector<double> &recv)
+{
+  const int nprocs = comm->nprocs;
+  std::vector<int> &rcounts = fix.counts, &rdispls = fix.displs;
+  rcounts.resize(nprocs);
+  rdispls.resize(nprocs);
+  sdispls.resize(nprocs);
+  MPI_Alltoall(scounts.data(), 1, MPI_INT, rcounts.data(), 1, MPI_INT, world);
+  int total = 0, stotal = 0;
+  for (int p = 0; p < nprocs; p++) {
+    rdispls[p] = total;
+    total += rcounts[p];
+    sdispls[p] = stotal;
+    stotal += scounts[p];
+  }
+  recv.resize(total);
+  MPI_Alltoallv(send.data(), scounts.data(), sdispls.data(), MPI_DOUBLE, recv.data(),
+                rcounts.data(), rdispls.data(), MPI_DOUBLE, world);
+  return total;
 }
 
 // ------------------------------------------------ the copies this rank needs
@@ -719,8 +768,8 @@ void HardsphereDomainWindow::event_of(int e, int m, double *out) const
 }
 
 // ------------------------------------------------ publish the histories of sent atoms
-// events per watched slot (pair and wall collisions, in time order), then the sent atoms'
-// lists to every rank
+// events per watched slot (pair and wall collisions, in time order), then each sent atom's list
+// to the ranks it was sent to
 void HardsphereDomainWindow::publish_histories()
 {
   start.assign(nwatch + 1, 0);
@@ -740,18 +789,34 @@ void HardsphereDomainWindow::publish_histories()
     if (ki >= 0) evlist[fill[ki]++] = m;
     if (kj >= 0) evlist[fill[kj]++] = m;
   }
-  size_t hsize = 0;
-  for (int k = ncopy; k < nwatch; k++) hsize += 2 + (size_t) (start[k + 1] - start[k]) * NEV;
-  hsend.resize(hsize);    // (every entry is set below)
-  for (size_t k = ncopy, o0 = 0; k < (size_t) nwatch; k++) {
-    const int e = wlist[k];
-    const int cnt = start[k + 1] - start[k];
-    hsend[o0] = (double) stag[e];
-    hsend[o0 + 1] = (double) cnt;
-    for (int m = 0; m < cnt; m++) event_of(e, evlist[start[k] + m], &hsend[o0 + 2 + (size_t) m * NEV]);
-    o0 += 2 + cnt * NEV;
+  // each sent atom's history (its ID, its event count, its events) once, then copied to every
+  // rank that got the atom
+  std::vector<double> &own = dsend;    // (as scratch: the records were sent)
+  std::vector<size_t> &at = hist_at;
+  at.assign(sendlist.size() + 1, 0);
+  for (size_t k = 0; k < sendlist.size(); k++) {
+    const int w = widx[lslot[sendlist[k]]];
+    at[k + 1] = at[k] + 2 + (size_t) (start[w + 1] - start[w]) * NEV;
   }
-  fix.allgather(hsend, hrecv);
+  own.resize(at.back());    // (every entry is set below)
+  for (size_t k = 0; k < sendlist.size(); k++) {
+    const int e = lslot[sendlist[k]], w = widx[e];
+    const int cnt = start[w + 1] - start[w];
+    own[at[k]] = (double) stag[e];
+    own[at[k] + 1] = (double) cnt;
+    for (int m = 0; m < cnt; m++) event_of(e, evlist[start[w] + m], &own[at[k] + 2 + (size_t) m * NEV]);
+  }
+  scounts.assign(comm->nprocs, 0);
+  hsend.clear();
+  for (size_t m = 0; m < to_dest.size(); m++) {
+    const size_t before = hsend.size();
+    for (int k = to_start[m]; k < to_start[m + 1]; k++) {
+      const size_t q = send_index[to_rank[k]];
+      hsend.insert(hsend.end(), own.begin() + at[q], own.begin() + at[q + 1]);
+    }
+    scounts[to_dest[m]] = (int) (hsend.size() - before);
+  }
+  received += exchange(hsend, hrecv);
 }
 
 // ------------------------------------------------ compare where it mattered
@@ -861,5 +926,7 @@ double HardsphereDomainWindow::memory_usage() const
       bytes(sowned) + bytes(sowned_prev) + bytes(sseen) + bytes(sent) + bytes(inslot) +
       bytes(evlist) + bytes(cslot) + bytes(watch) + bytes(gsrc) + bytes(start) + bytes(fill) +
       bytes(gshift) + bytes(tstar) + bytes(published) + bytes(aorder) + bytes(sendlist) +
-      bytes(wlist) + bytes(widx) + bytes(rm) + bytes(bb) + bytes(reg);
+      bytes(wlist) + bytes(widx) + bytes(rm) + bytes(bb) + bytes(reg) + bytes(to_rank) +
+      bytes(to_start) + bytes(to_dest) + bytes(send_index) + bytes(scounts) + bytes(sdispls) +
+      bytes(hist_at);
 }

@@ -73,11 +73,13 @@ class HardsphereDomainWindow : protected Pointers {
   AtomRecord record_of(int a, double t0) const;
   bool rounding_only(int sl, const AtomRecord &r) const;
   void event_of(int e, int m, double *out) const;
+  long exchange(const std::vector<double> &send, std::vector<double> &recv);
   bool guard_atom(int i, double s2, double dt);
 
   // ---- this window (set by the stages)
   int nlocal = 0, dim = 3, nghost = 0, ncopy = 0, nwatch = 0;
   double step = 0.0;             // the window's length
+  long received = 0;             // doubles this rank received
   granfric::EDOptions base;      // the fix's core options
   double gmx[2] = {0, 0};        // the largest speed bound and radius over all ranks
   double mybb[6];                // this rank's bounding box
@@ -119,6 +121,11 @@ class HardsphereDomainWindow : protected Pointers {
   std::vector<double> tstar;
   std::vector<long> published;
   std::vector<uint8_t> watch;
+  // the atoms for each other rank: to_rank[to_start[m] ...] go to rank to_dest[m]; each sent
+  // atom's place in sendlist (by atom, -1: not sent), where its history starts in the window's
+  // own histories; doubles for each rank and where they start
+  std::vector<int> to_rank, to_start, to_dest, send_index, scounts, sdispls;
+  std::vector<size_t> hist_at;
 };
 
 }    // namespace LAMMPS_NS
