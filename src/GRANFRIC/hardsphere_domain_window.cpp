@@ -136,13 +136,12 @@ bool HardsphereDomainWindow::run(double t0, double dt)
 // ------------------------------------------------ the reach D and the shell W
 // speed bound: all of an atom's kinetic energy as translation, plus what a vibrating wall can
 // add (twice its largest speed); one pass over the atoms also gives this rank's bounding box,
-// for the regions, and the largest atom ID (slots are looked up by ID)
+// for the regions
 void HardsphereDomainWindow::bound_reach(double dt)
 {
   const double *xa = nlocal > 0 ? atom->x[0] : nullptr, *va = nlocal > 0 ? atom->v[0] : nullptr;
   const double *wa = nlocal > 0 ? atom->omega[0] : nullptr;
   const double *radius = atom->radius;
-  const tagint *tag = atom->tag;
   const double q = fix.pair->shape_factor();
   double mx[2] = {0.0, 0.0};
   for (int d = 0; d < 3; d++) {
@@ -155,7 +154,6 @@ void HardsphereDomainWindow::bound_reach(double dt)
   auto bound_pass = [&](auto dims) {
     constexpr int DIM = decltype(dims)::value;
     double e2 = 0.0, amax = 0.0, lo[3] = {INF, INF, INF}, hi[3] = {-INF, -INF, -INF};
-    long tmax = 0;
     for (int i = 0; i < nlocal; i++) {
       const double *xi = xa + 3 * i, *vi = va + 3 * i, *wi = wa + 3 * i;
       const double w2 = DIM == 2 ? wi[2] * wi[2] : dot3(wi, wi);
@@ -165,7 +163,6 @@ void HardsphereDomainWindow::bound_reach(double dt)
         lo[d] = std::min(lo[d], xi[d]);
         hi[d] = std::max(hi[d], xi[d]);
       }
-      tmax = std::max(tmax, (long) tag[i]);
     }
     mx[0] = e2;
     mx[1] = amax;
@@ -173,7 +170,6 @@ void HardsphereDomainWindow::bound_reach(double dt)
       mybb[d] = lo[d];
       mybb[3 + d] = hi[d];
     }
-    maxtag = tmax;
   };
   if (dim == 2)
     bound_pass(std::integral_constant<int, 2>());
@@ -341,7 +337,6 @@ void HardsphereDomainWindow::find_copies()
       }
     }
   nghost = (int) gsrc.size();
-  for (int k : gsrc) maxtag = std::max(maxtag, (long) drecv[k + AtomRecordAt::TAG]);
 }
 
 // the ID of atom a of this window: owned (a < nlocal), or a copy
@@ -426,15 +421,14 @@ bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
   ok = ok && ed.configured_as(o, atom->ntypes, fix.law_table());
   inslot.resize(nlocal + nghost);    // (set for every atom before use)
   if (!ok) return false;
-  if ((long) slot_of_tag.size() <= maxtag) slot_of_tag.resize(maxtag + 1, -1);
   if (++stamp == INT32_MAX) return false;
   // (locals: stores through int pointers could otherwise alias the stamp)
-  const int st = stamp, *slot = slot_of_tag.data();
+  const int st = stamp;
   int *seen = sseen.data(), *ins = inslot.data();
   bool twice = false;    // (an atom twice cannot happen: owned once, copied once)
   long matched = 0;      // atoms that have a slot
   for (int a = 0; a < nlocal + nghost; a++) {
-    const int sl = slot[tag_of(a)];
+    const int sl = slot_of_tag.get(tag_of(a));
     ins[a] = sl;
     if (sl < 0) continue;
     matched++;
@@ -499,7 +493,7 @@ void HardsphereDomainWindow::keep_core(double t0)
   ed.set_clock(t0);
   for (int sl : rm) {
     ed.remove(sl);    // an atom no longer in this rank's region
-    slot_of_tag[stag[sl]] = -1;
+    slot_of_tag.erase(stag[sl]);
     stag[sl] = -1;
     smask[sl] = 0;
     free_slots.push_back(sl);
@@ -532,7 +526,7 @@ void HardsphereDomainWindow::keep_core(double t0)
     if (sl < 0) {
       sl = free_slots.back();
       free_slots.pop_back();
-      slot_of_tag[(long) in.tag] = sl;
+      slot_of_tag.set((long) in.tag, sl);
       stag[sl] = (long) in.tag;
     }
     auto ps = ed.particle(sl);
@@ -582,7 +576,7 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
   sowned.assign(ns, 0);
   sseen.assign(ns, 0);
   stamp = 0;
-  slot_of_tag.assign(maxtag + 1, -1);
+  slot_of_tag.reset(ns);
   free_slots.clear();
   lslot.resize(nlocal);
   for (int e = 0; e < ns; e++) {
@@ -609,7 +603,7 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
     } else {
       cslot.push_back(e);
     }
-    slot_of_tag[stag[e]] = e;
+    slot_of_tag.set(stag[e], e);
   }
   ed.set_clock(t0);
   fix.start_core(false);
@@ -835,7 +829,7 @@ int HardsphereDomainWindow::compare_histories(double dt)
     if (p == comm->me) continue;
     for (size_t k = fix.displs[p]; k < (size_t) (fix.displs[p] + fix.counts[p]);) {
       const long t = (long) hrecv[k];
-      const int sl = t < (long) slot_of_tag.size() ? slot_of_tag[t] : -1;
+      const int sl = slot_of_tag.get(t);
       if (sl >= 0 && widx[sl] >= 0 && widx[sl] < ncopy) published[widx[sl]] = (long) k;    // (a copy here)
       k += 2 + (size_t) hrecv[k + 1] * NEV;
     }
@@ -922,7 +916,7 @@ double HardsphereDomainWindow::memory_usage() const
 {
   auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
   return bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) + bytes(hrecv) + bytes(stag) +
-      bytes(smask) + bytes(kick_tags) + bytes(slot_of_tag) + bytes(free_slots) + bytes(lslot) +
+      bytes(smask) + bytes(kick_tags) + (double) slot_of_tag.memory_bytes() + bytes(free_slots) + bytes(lslot) +
       bytes(sowned) + bytes(sowned_prev) + bytes(sseen) + bytes(sent) + bytes(inslot) +
       bytes(evlist) + bytes(cslot) + bytes(watch) + bytes(gsrc) + bytes(start) + bytes(fill) +
       bytes(gshift) + bytes(tstar) + bytes(published) + bytes(aorder) + bytes(sendlist) +

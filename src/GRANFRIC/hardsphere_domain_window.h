@@ -17,6 +17,7 @@
 #include "atom_record.h"
 
 #include "event_driven.h"
+#include "id_map.h"
 
 #include <cstdint>
 #include <vector>
@@ -83,7 +84,6 @@ class HardsphereDomainWindow : protected Pointers {
   granfric::EDOptions base;      // the fix's core options
   double gmx[2] = {0, 0};        // the largest speed bound and radius over all ranks
   double mybb[6];                // this rank's bounding box
-  long maxtag = 0;               // the largest atom ID here
   double vwall = 0.0, g = 0.0;   // the fastest wall's speed bound, |gravity|
   double D = 0.0, W = 0.0;       // the reach and the shell width
   double s2lim = 0.0;            // squared speed above which the core lists an atom (guard)
@@ -99,7 +99,7 @@ class HardsphereDomainWindow : protected Pointers {
   double last_dt = 0.0;
   double grid_lo[3] = {0, 0, 0}, grid_hi[3] = {0, 0, 0};    // the kept cell grid (open dims)
   bool grid_whole[3] = {false, false, false};
-  std::vector<int> slot_of_tag;                 // slot of each atom ID, -1: none
+  granfric::IdMap slot_of_tag;                  // slot of each atom ID here
   std::vector<int> free_slots;
   std::vector<long> stag;                       // each slot's atom ID (-1: empty)
   std::vector<int> smask;                       // each slot's group mask (0: empty)

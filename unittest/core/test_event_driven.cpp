@@ -5,10 +5,14 @@
 // no overlaps; gravity; the TC model against inelastic collapse and the event cap without it.
 #include "ed_fixture.h"
 
+#include "core/id_map.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <random>
 #include <type_traits>
+#include <unordered_map>
 
 using namespace granfric;
 using namespace granfric_test;
@@ -1050,4 +1054,32 @@ TEST(EDStatsFields, AddFlattenUnflatten)
   EXPECT_EQ(s2, sums);
   EXPECT_EQ(back.dE_wall, sum.dE_wall);
   EXPECT_EQ(back.gamma_hist[3], sum.gamma_hist[3]);
+}
+
+// the ID map of domain windows against std::unordered_map: random inserts, overwrites and
+// erases (long probe runs included: few distinct homes at the start), growth past its room
+TEST(IdMapTable, AgreesWithUnorderedMap)
+{
+  IdMap m;
+  m.reset(8);
+  std::unordered_map<long, int> ref;
+  std::mt19937_64 rng(5);
+  for (int step = 0; step < 200000; step++) {
+    const long key = (long) (rng() % (step < 20000 ? 64 : 5000));
+    const int op = (int) (rng() % 3);
+    if (op == 2) {
+      m.erase(key);
+      ref.erase(key);
+    } else {
+      const int v = (int) (rng() % 1000);
+      m.set(key, v);
+      ref[key] = v;
+    }
+    if (step % 997 == 0)
+      for (long k = 0; k < 5000; k++) {
+        const auto it = ref.find(k);
+        ASSERT_EQ(m.get(k), it == ref.end() ? -1 : it->second) << "step " << step << " key " << k;
+      }
+  }
+  EXPECT_EQ(m.size(), ref.size());
 }
