@@ -10,8 +10,7 @@
 #include "hardsphere_gather_window.h"
 #include "hardsphere_host.h"
 
-#include "fix_hardsphere_kick.h"
-#include "fix_hardsphere_wall.h"
+#include "hardsphere_window_parts.h"
 
 #include "atom.h"
 #include "citeme.h"
@@ -222,8 +221,8 @@ void FixHardsphereED::init()
   walls.clear();
   for (const auto &f : modify->get_fix_list()) {
     if (f == this) continue;
-    if (auto *k = dynamic_cast<FixHardsphereKick *>(f)) kicks.push_back(k);
-    if (auto *w = dynamic_cast<FixHardsphereWall *>(f)) walls.push_back(w);
+    if (auto *k = dynamic_cast<HardsphereDriving *>(f)) kicks.push_back(k);
+    if (auto *w = dynamic_cast<HardsphereWallPart *>(f)) walls.push_back(w);
     if (utils::strmatch(f->style, "^gravity"))
       error->all(FLERR,
                  "Fix {} (gravity) acts together with fix hardsphere/ed {}: use the gravity "
@@ -311,8 +310,8 @@ void FixHardsphereED::check_walls_cross() const
       const granfric::EDWall a = lo->geometry(), b = hi->geometry();
       if (a.dim != b.dim || a.side > 0 || b.side < 0 || a.pos + a.A < b.pos) continue;
       error->all(FLERR, "Fix hardsphere/wall {} ({} at {}{}) is not below fix hardsphere/wall {} "
-                 "({} at {}): the lower wall must lie below the upper one", lo->id, lo->face(),
-                 a.pos, a.A > 0.0 ? fmt::format(" + amplitude {}", a.A) : "", hi->id, hi->face(),
+                 "({} at {}): the lower wall must lie below the upper one", lo->wall_id(), lo->face(),
+                 a.pos, a.A > 0.0 ? fmt::format(" + amplitude {}", a.A) : "", hi->wall_id(), hi->face(),
                  b.pos);
     }
 }
@@ -353,7 +352,7 @@ void FixHardsphereED::check_atoms_between_walls() const
       at[d] = atom_value(who, [&](int i) { return d < 3 ? atom->x[i][d] : atom->radius[i]; });
     error->all(FLERR, "Fix hardsphere/ed: atom {} at ({}, {}, {}) with radius {} reaches behind "
                "fix hardsphere/wall {} ({} at {}): every atom must start between the walls, "
-               "at least its radius away from each", who, at[0], at[1], at[2], at[3], w->id,
+               "at least its radius away from each", who, at[0], at[1], at[2], at[3], w->wall_id(),
                w->face(), p);
   }
 }

@@ -141,8 +141,8 @@ class FixHardsphereED : public Fix {
   // a restart file was written: the next window starts afresh from the atoms as the file holds
   // them, as a run continued from that file does (see resync_for_restart)
   bool resync = false;
-  std::vector<class FixHardsphereKick *> kicks;  // driving fixes, applied inside the window
-  std::vector<class FixHardsphereWall *> walls;  // walls, collided inside the window
+  std::vector<class HardsphereDriving *> kicks;  // driving fixes, applied inside the window
+  std::vector<class HardsphereWallPart *> walls; // walls, collided inside the window
 
   bool check_windows = true;             // keyword check: redo a domain window that has a conflict
   int parallel;                          // GATHER or DOMAIN

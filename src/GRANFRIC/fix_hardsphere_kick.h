@@ -22,11 +22,12 @@ FixStyle(hardsphere/kick,FixHardsphereKick);
 
 #include "fix.h"
 
+#include "hardsphere_window_parts.h"
 #include "kicks.h"
 
 namespace LAMMPS_NS {
 
-class FixHardsphereKick : public Fix {
+class FixHardsphereKick : public Fix, public HardsphereDriving {
  public:
   FixHardsphereKick(class LAMMPS *, int, char **);
   int setmask() override;
@@ -35,18 +36,13 @@ class FixHardsphereKick : public Fix {
   void write_restart(FILE *) override;
   void restart(char *) override;
 
-  // for fix hardsphere/ed: the kicks k with k/f_dr in [t0, t1) (absolute times), consumed
-  void kicks_in(double t0, double t1, std::vector<double> &times, std::vector<long> &index);
-  // the next kick's index, and setting it back (a window that is redone takes its kicks again)
-  long kick_counter() const { return next_kick; }
-  void rewind(long k) { next_kick = k; }
-  // apply kick k to the particles of ed: tag[e], mask[e] of core particle e; dvcm: the velocity
-  // shift that keeps the total momentum zero (momentum_shift())
-  void apply(granfric::EventDriven &ed, const std::vector<tagint> &tag,
-             const std::vector<int> &mask, long k, int dim, const granfric::Vec3 &dvcm) const;
-  // the shift of kick k over the group's atoms on all ranks (collective; zero without
-  // momentum yes), the same bit for bit on any number of ranks
-  granfric::Vec3 momentum_shift(long k, int dim) const;
+  // (HardsphereDriving)
+  void kicks_in(double t0, double t1, std::vector<double> &times, std::vector<long> &index) override;
+  long kick_counter() const override { return next_kick; }
+  void rewind(long k) override { next_kick = k; }
+  granfric::Vec3 momentum_shift(long k, int dim) const override;
+  void apply(granfric::EventDriven &ed, const std::vector<tagint> &tag, const std::vector<int> &mask,
+             long k, int dim, const granfric::Vec3 &dvcm) const override;
   // bounds (doc/fix_hardsphere_kick.rst): kicks per step, kicks per step times atoms, the kick
   // index of a run, v_dr
   static constexpr double MAX_KICKS_PER_STEP = 1e6, MAX_ATOM_KICKS_PER_STEP = 1e9;

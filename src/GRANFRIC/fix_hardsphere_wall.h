@@ -24,27 +24,26 @@ FixStyle(hardsphere/wall,FixHardsphereWall);
 
 #include "fix.h"
 
-#include "event_driven.h"
+#include "hardsphere_window_parts.h"
 
 #include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
 
-class FixHardsphereWall : public Fix {
+class FixHardsphereWall : public Fix, public HardsphereWallPart {
  public:
   FixHardsphereWall(class LAMMPS *, int, char **);
   int setmask() override;
   void init() override;
-  // the wall for the core, at the current box (after init(), which validates the coefficients)
-  granfric::EDWall wall() const;
-  int dimension() const { return dim; }
-  std::string face() const { return std::string(1, "xyz"[dim]) + (side < 0 ? "lo" : "hi"); }
-  granfric::EDWall geometry() const;    // position and motion only
+  // (HardsphereWallPart; the wall at the current box, after init() validated the coefficients)
+  const char *wall_id() const override { return id; }
+  granfric::EDWall wall() const override;
+  int dimension() const override { return dim; }
+  std::string face() const override { return std::string(1, "xyz"[dim]) + (side < 0 ? "lo" : "hi"); }
+  granfric::EDWall geometry() const override;
+  void tally(long hits, const double *impulse, double work, double dt) override;
   double compute_vector(int) override;
-  // one step's collisions with the wall (from fix hardsphere/ed): their number, the momentum
-  // they gave the wall (3 values), the energy the wall gave the particles, the step length
-  void tally(long hits, const double *impulse, double work, double dt);
   void write_restart(FILE *) override;
   void restart(char *) override;
 

@@ -23,9 +23,9 @@
 #include "hardsphere_domain_window.h"
 
 #include "fix_hardsphere_ed.h"
-#include "fix_hardsphere_kick.h"
 #include "hardsphere_gather_window.h"
 #include "hardsphere_host.h"
+#include "hardsphere_window_parts.h"
 #include "pair_hardsphere.h"
 
 #include "atom.h"
