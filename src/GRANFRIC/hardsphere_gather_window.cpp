@@ -53,11 +53,6 @@ AtomRecord HardsphereGatherWindow::record(int k, double t0) const
   return comm->nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : fix.atom_record(k, t0);
 }
 
-tagint HardsphereGatherWindow::tag_of(int k) const
-{
-  return comm->nprocs > 1 ? (tagint) recvbuf[(size_t) k * NPACK + AtomRecordAt::TAG] : atom->tag[k];
-}
-
 // On several ranks every rank packs its atoms and gathers everybody's. On one rank the atom
 // arrays are the system: they are read in place (no copy).
 void HardsphereGatherWindow::gather(double t0)
@@ -80,17 +75,22 @@ void HardsphereGatherWindow::gather(double t0)
 // step's order usually still holds
 void HardsphereGatherWindow::order_by_id()
 {
+  // (the IDs read in place: this runs for every atom and step)
+  const double *rb = recvbuf.data();
+  const tagint *tag = atom->tag;
+  const bool gathered = comm->nprocs > 1;
+  auto id = [=](int k) { return gathered ? (tagint) rb[(size_t) k * NPACK + AtomRecordAt::TAG] : tag[k]; };
   bool same_order = (int) order.size() == ntotal;
-  for (int s = 0; same_order && s < ntotal; s++) same_order = tag_of(order[s]) == otags[s];
+  for (int s = 0; same_order && s < ntotal; s++) same_order = id(order[s]) == otags[s];
   if (same_order) return;
   order.resize(ntotal);
   for (int k = 0; k < ntotal; k++) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return id(a) < id(b); });
   // the same atoms as the core's if the sorted tags are the same
   bool same = same_atoms && (int) otags.size() == ntotal;
   otags.resize(ntotal);
   for (int s = 0; s < ntotal; s++) {
-    const tagint t = tag_of(order[s]);
+    const tagint t = id(order[s]);
     same = same && otags[s] == t;
     otags[s] = t;
   }

@@ -53,7 +53,6 @@ class HardsphereGatherWindow : protected Pointers {
 
   // ---- helpers of the stages
   AtomRecord record(int k, double t0) const;    // atom k of the gathered system
-  tagint tag_of(int k) const;
   bool reusable(int s);
   void written_state(int s, double t, double *w) const;
 
