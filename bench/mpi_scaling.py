@@ -9,9 +9,17 @@ run, not a test. Writes bench/results/mpi_scaling.csv and prints a markdown tabl
 
     /usr/bin/python3 bench/mpi_scaling.py [--quick | --full] [--ranks 2] [--repeat K] [--n NSIDE]
     /usr/bin/python3 bench/mpi_scaling.py --callgrind [--ranks 2]
+    /usr/bin/python3 bench/mpi_scaling.py --comm [--ranks 2 4 8 16] [--n NSIDE] [--dt DT]
 
 --callgrind: the efficiency from instruction counts instead (N = 99856), for the whole short
 run and for its steady state (see callgrind_table).
+
+--comm: what parallel domain exchanges as the rank count grows (ranks oversubscribed on this
+machine's cores; a short run of 2 collisions per particle after 2 of equilibration, N = 632^2 =
+399424 by default, fraction 0.3, a step of one mean free time): per rank count the processor
+grid, the doubles received per rank per window and their ratio to the first rank count's, the
+conflicts and the windows redone, and LAMMPS's peak memory per rank. Writes
+bench/results/mpi_comm.csv.
 
 --repeat K (default 3): each case runs K times on 1 and on several ranks, interleaved, and the
 efficiency is taken from the fastest run of each (a shared machine only ever adds time, and two
@@ -99,12 +107,53 @@ def run(nside, phi, dtmft, ncoll, np_, parallel="domain"):
             "redone": float(par.group(3)), "comm": float(par.group(4))}
 
 
+def comm_table(ranks, nside, dtmft, phi=0.3):
+    """The exchange of parallel domain against the rank count (see --comm)."""
+    rows = []
+    for np_ in cli.progress(ranks, "ranks"):
+        p = lmp.run(os.path.join(HERE, "in.speed"), {"dim": 2, "nside": nside, "phi": phi,
+                                                       "dtmft": dtmft, "ncoll": 2, "neq": 2},
+                    np=np_, log=os.devnull, quiet=False)
+        out = p.stdout
+        grid = re.findall(r"(\d+) by (\d+) by (\d+) MPI processor grid", out)[-1]
+        par = re.search(r"PARALLEL windows ([0-9.e+-]+) conflicts ([0-9.e+-]+) redone "
+                        r"([0-9.e+-]+) comm ([0-9.e+-]+)", out)
+        mem = [float(m) for m in re.findall(r"Per MPI rank memory allocation \(min/avg/max\) = "
+                                            r"[0-9.]+ \| [0-9.]+ \| ([0-9.]+) Mbytes", out)]
+        N = int(re.search(r"BENCH dim 2 N (\d+)", out).group(1))
+        windows = max(float(par.group(1)), 1.0)
+        rows.append({"ranks": np_, "grid": "x".join(grid[:2]), "N": N,
+                     "windows": windows, "conflicts": float(par.group(2)),
+                     "redone": float(par.group(3)),
+                     "doubles_per_rank_per_window": float(par.group(4)) / windows / np_,
+                     "peak_MB_per_rank": max(mem) if mem else float("nan")})
+    base = rows[0]["doubles_per_rank_per_window"]
+    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
+    path = os.path.join(HERE, "results", "mpi_comm.csv")
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    print(f"N = {rows[0]['N']}, fraction {phi}, steps of {dtmft} mean free times")
+    print(f"| ranks | grid | windows | conflicts | redone | doubles received per rank per window | "
+          f"against {rows[0]['ranks']} ranks | peak memory per rank (MB) |")
+    print("|---|---|---|---|---|---|---|---|")
+    for x in rows:
+        print(f"| {x['ranks']} | {x['grid']} | {x['windows']:.0f} | {x['conflicts']:.0f} | "
+              f"{x['redone']:.0f} | {x['doubles_per_rank_per_window']:.0f} | "
+              f"{x['doubles_per_rank_per_window'] / base:.2f} | {x['peak_MB_per_rank']:.1f} |")
+    print(f"\nwritten {path}")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     g = ap.add_mutually_exclusive_group()
     g.add_argument("--quick", action="store_true")
     g.add_argument("--full", action="store_true")
-    ap.add_argument("--ranks", type=int, default=2)
+    ap.add_argument("--ranks", type=int, nargs="+", default=None,
+                    help="rank count (default 2; --comm: several, default 2 4 8 16)")
+    ap.add_argument("--comm", action="store_true",
+                    help="data received per rank against the rank count (see above)")
     ap.add_argument("--repeat", type=int, default=3,
                     help="interleaved runs per case; the fastest of each rank count is used")
     ap.add_argument("--n", type=int, default=0, help="only this lattice side (N = n^2)")
@@ -113,6 +162,9 @@ def main(argv=None):
     ap.add_argument("--callgrind", action="store_true",
                     help="parallel efficiency from instruction counts (N = 1e5, slow but reproducible)")
     a = ap.parse_args(argv)
+    if a.comm:
+        return comm_table(a.ranks or [2, 4, 8, 16], a.n or 632, (a.dt or [1.0])[0])
+    a.ranks = (a.ranks or [2])[0]
     if a.callgrind:
         return callgrind_table(a.ranks)
     if a.quick:
