@@ -137,7 +137,7 @@ class FixHardsphereED : public Fix {
   class HardsphereGatherWindow *gwin;
   class HardsphereDomainWindow *dwin;
   void invalidate_windows();             // the core no longer holds what a window left
-  std::vector<int> counts, displs;       // each rank's part of the last allgather
+  std::vector<int> counts, displs;       // where each rank's part of the last received buffer lies
   // a restart file was written: the next window starts afresh from the atoms as the file holds
   // them, as a run continued from that file does (see resync_for_restart)
   bool resync = false;
