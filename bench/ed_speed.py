@@ -10,16 +10,14 @@ writes bench/results/ed_speed.csv. Not a test: figures, measured in one run.
     PYTHONPATH=tools /usr/bin/python3 bench/ed_speed.py [--quick] [--np 1]
 """
 import argparse
-import csv
 import os
 import re
-import subprocess
 import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "tools"))
-from granfric import lmp  # noqa: E402
+from granfric import cli, lmp  # noqa: E402
 
 
 def run_one(dim, nside, phi, dtmft, ncoll, np_=1, lean=1, neq=5):
@@ -65,12 +63,7 @@ def main():
         else:
             r["lammps_defaults_MB_per_rank"] = float("nan")
         rows.append(r)
-    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
-    path = os.path.join(HERE, "results", "ed_speed.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    path = cli.write_rows(os.path.join(HERE, "results", "ed_speed.csv"), rows)
     print("\n| dim | N | fraction | dt (mean free times) | collisions/s per core | LAMMPS MB/rank | "
           "bytes/particle | bytes/particle, LAMMPS defaults |")
     print("|---|---|---|---|---|---|---|---|")

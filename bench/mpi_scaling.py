@@ -27,7 +27,6 @@ ranks on two cores suffer most from it); the table also gives the spread of the 
 efficiencies. --n 316 restricts the cases to one system size (N = 316^2).
 """
 import argparse
-import csv
 import os
 import re
 import sys
@@ -128,12 +127,7 @@ def comm_table(ranks, nside, dtmft, phi=0.3):
                      "doubles_per_rank_per_window": float(par.group(4)) / windows / np_,
                      "peak_MB_per_rank": max(mem) if mem else float("nan")})
     base = rows[0]["doubles_per_rank_per_window"]
-    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
-    path = os.path.join(HERE, "results", "mpi_comm.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    path = cli.write_rows(os.path.join(HERE, "results", "mpi_comm.csv"), rows)
     print(f"N = {rows[0]['N']}, fraction {phi}, steps of {dtmft} mean free times")
     print(f"| ranks | grid | windows | conflicts | redone | doubles received per rank per window | "
           f"against {rows[0]['ranks']} ranks | peak memory per rank (MB) |")
@@ -200,12 +194,7 @@ def main(argv=None):
                      "conflicts_per_window": par["conflicts"] / max(par["windows"], 1),
                      "comm_doubles_per_window_per_rank": par["comm"] / max(par["windows"], 1) / a.ranks,
                      "comm_per_particle": par["comm"] / max(par["windows"], 1) / a.ranks / one["N"]})
-    os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
-    path = os.path.join(HERE, "results", "mpi_scaling.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    path = cli.write_rows(os.path.join(HERE, "results", "mpi_scaling.csv"), rows)
     r = a.ranks
     print(f"| N | fraction | dt (mean free times) | us/collision 1 rank (fastest) | us/collision {r} "
           f"ranks (fastest) | efficiency | per-round efficiencies | windows redone | doubles received "

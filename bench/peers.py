@@ -25,7 +25,6 @@ Prints a table with the ratio peer CPU / GRANFRIC CPU per point ("GRANFRIC faste
 DIR/peers.csv (default DIR = bench/results). A benchmark, not a test.
 """
 import argparse
-import csv
 import math
 import os
 import re
@@ -38,6 +37,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 LMP = os.path.join(ROOT, "tools", "lmp")
 INPUT = os.path.join(HERE, "in.peers")
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+from granfric import cli  # noqa: E402
 PEER_SOURCES = ("mdSingle.c", "mdSingle.h", "mt19937ar.c")
 PEER_CFLAGS = ["-O3", "-ffast-math", "-funroll-loops", "-march=native"]
 RATE_TOLERANCE = 0.02      # the guard: collision counts of both within 2 %
@@ -190,10 +191,7 @@ def report(points, best, rounds, out):
                      f"{b['peer']:.2f} | {b['ours']:.2f} | x{ratio:.2f} | "
                      f"{b['rss_peer'] / n:.0f} / {b['rss_ours'] / n:.0f} |")
     print("\n".join(lines))
-    with open(os.path.join(out, "peers.csv"), "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    cli.write_rows(os.path.join(out, "peers.csv"), rows)
     return rows
 
 

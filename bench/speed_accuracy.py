@@ -33,7 +33,6 @@ DIR = out/speed_accuracy). A benchmark, not a test: the figures are measured in 
 machine.
 """
 import argparse
-import csv
 import math
 import os
 import re
@@ -46,7 +45,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(ROOT, "tools"))
-from granfric import cooling, herbst, lammpslog  # noqa: E402
+from granfric import cli, cooling, herbst, lammpslog  # noqa: E402
 
 LMP = os.path.join(ROOT, "tools", "lmp")
 BUILD = os.environ.get("GRANFRIC_BUILD", os.path.join(ROOT, "build"))
@@ -475,7 +474,6 @@ def driven_scene(phi, S, work, bar):
     def dem(f, k, role):
         tc = f * mft
         dt = snap_step(tc / k, P)
-        nper = round(P / dt)
         t_run = min(S["drv_disc_mft"] + S["drv_avg_mft"], S["drv_cap_steps"] * dt / mft)
         t_run = max(t_run, S["drv_disc_mft"] + 2 * P / mft)
         tend = P * max(2, round(t_run * mft / P))
@@ -824,11 +822,7 @@ def main(argv=None):
                               f"<= 0.7 %); exact ED {label(e)}: {e['cost']:.3g} s")
 
     csv_path = os.path.join(a.out, "speed_accuracy.csv")
-    with open(csv_path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        for r in rows:
-            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+    cli.write_rows(csv_path, rows, "{:.6g}")
     md_path = os.path.join(a.out, "speed_accuracy.md")
     write_markdown(md_path, rows, infos, mapping, ratios, size, ceilings)
     png_path = os.path.join(a.out, "speed_accuracy.png")

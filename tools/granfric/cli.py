@@ -2,6 +2,7 @@
 # Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Shared command-line pieces of the scene scripts (herbst, luding, risso)."""
 import argparse
+import csv
 import importlib
 import os
 import sys
@@ -67,3 +68,16 @@ def progress(iterable, desc):
         return tqdm(iterable, desc=desc)
     except ImportError:
         return iterable
+
+
+def write_rows(path, rows, float_format=None):
+    """rows (dicts with the same keys) as a CSV table at path, its folder made if missing;
+    floats formatted with float_format (e.g. "{:.6g}") if given. Returns path."""
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (float_format.format(v) if float_format and isinstance(v, float) else v)
+                        for k, v in r.items()})
+    return path
