@@ -18,7 +18,9 @@ run and for its steady state (see callgrind_table).
 machine's cores; a short run of 2 collisions per particle after 2 of equilibration, N = 632^2 =
 399424 by default, fraction 0.3, a step of one mean free time): per rank count the processor
 grid, the doubles received per rank per window and their ratio to the first rank count's, the
-conflicts and the windows redone, and LAMMPS's peak memory per rank. Writes
+same ratio of the subdomains' boundary length per rank (the surface model: a rank receives the
+atoms of the shell around its subdomain), the conflicts and the windows redone, and LAMMPS's
+peak memory per rank. Writes
 bench/results/mpi_comm.csv.
 
 --repeat K (default 3): each case runs K times on 1 and on several ranks, interleaved, and the
@@ -126,16 +128,24 @@ def comm_table(ranks, nside, dtmft, phi=0.3):
                      "redone": float(par.group(3)),
                      "doubles_per_rank_per_window": float(par.group(4)) / windows / np_,
                      "peak_MB_per_rank": max(mem) if mem else float("nan")})
+    # the surface model: a rank receives the atoms within the shell around its subdomain,
+    # so the data per rank follows the length of the subdomain's boundary with other
+    # subdomains (2D, square box; a dimension split into one part has no boundary)
+    for x in rows:
+        px, py = (int(v) for v in x["grid"].split("x"))
+        x["boundary_per_rank_over_L"] = (2.0 / py if px > 1 else 0.0) + (2.0 / px if py > 1 else 0.0)
     base = rows[0]["doubles_per_rank_per_window"]
+    bound0 = rows[0]["boundary_per_rank_over_L"]
     path = cli.write_rows(os.path.join(HERE, "results", "mpi_comm.csv"), rows)
     print(f"N = {rows[0]['N']}, fraction {phi}, steps of {dtmft} mean free times")
     print(f"| ranks | grid | windows | conflicts | redone | doubles received per rank per window | "
-          f"against {rows[0]['ranks']} ranks | peak memory per rank (MB) |")
-    print("|---|---|---|---|---|---|---|---|")
+          f"against {rows[0]['ranks']} ranks | the boundary model's ratio | peak memory per rank (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     for x in rows:
         print(f"| {x['ranks']} | {x['grid']} | {x['windows']:.0f} | {x['conflicts']:.0f} | "
               f"{x['redone']:.0f} | {x['doubles_per_rank_per_window']:.0f} | "
-              f"{x['doubles_per_rank_per_window'] / base:.2f} | {x['peak_MB_per_rank']:.1f} |")
+              f"{x['doubles_per_rank_per_window'] / base:.2f} | "
+              f"{x['boundary_per_rank_over_L'] / bound0:.2f} | {x['peak_MB_per_rank']:.1f} |")
     print(f"\nwritten {path}")
 
 
