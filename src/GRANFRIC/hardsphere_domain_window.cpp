@@ -457,13 +457,13 @@ bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
 }
 
 // Rounding: a copy's state as its owner computed it differs in the last bits from the same
-// atom's state as this rank computed it (other cell grids advance it at other times; copies
-// across a periodic boundary sit at shifted coordinates), and chaos amplifies that within a
+// atom's state as this rank computed it (the owner sends it advanced to the window start, and
+// predictions made in other windows round their time shifts differently; copies across a
+// periodic boundary sit at shifted coordinates), and chaos amplifies that within a
 // window (measured, 2 ranks, N = 99856, fraction 0.3: all but 0.1 % of such differences below
 // 1e-12 of the values' scales, none above 1e-11; at 0.05 77 % below 1e-12, up to 1e-8). A copy
 // that lacked a partner differs by 1e-2 or more. Within ROUND of the scales the slot keeps its
-// predictions: they are those of the same trajectory, as when a cell crossing re-rounds a
-// state.
+// predictions: they are those of the same trajectory up to rounding.
 bool HardsphereDomainWindow::rounding_only(int sl, const AtomRecord &r) const
 {
   constexpr double ROUND = 1e-12;

@@ -46,30 +46,20 @@ inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, c
                                                               const Vec3 &vi, double pa, int j,
                                                               int o0, int o1, int o2)
 {
-  const Hot &q = H[j];
-  const Vec3 g = opt.gravity;
-  const double dtj = now - q.t;
-  double x0 = q.x.x + dtj * q.v.x, x1 = q.x.y + dtj * q.v.y;
-  double x2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
-  double v0 = q.v.x, v1 = q.v.y, v2 = DIM == 3 ? q.v.z : 0.0;
+  const Hot &q = H[j], &p = H[i];
+  (void) xi, (void) vi;
+  // canonical: from both stored states at tr = max(t_i, t_j), whoever predicts, whenever
+  const double tr = p.t > q.t ? p.t : q.t;
+  const Vec3 xi_r = pos(i, tr), xj_r = pos(j, tr), vi_r = vel(i, tr), vj_r = vel(j, tr);
+  double r0 = xi_r.x - xj_r.x, r1 = xi_r.y - xj_r.y, r2 = xi_r.z - xj_r.z;
   if (o0 | o1 | o2) {
-    x0 += o0 * L.x;
-    x1 += o1 * L.y;
-    if (DIM == 3) x2 += o2 * L.z;
+    r0 -= o0 * L.x;
+    r1 -= o1 * L.y;
+    if (DIM == 3) r2 -= o2 * L.z;
   }
-  if (GRAV) {
-    const double h = 0.5 * dtj * dtj;
-    x0 += h * g.x;
-    x1 += h * g.y;
-    v0 += dtj * g.x;
-    v1 += dtj * g.y;
-    if (DIM == 3) {
-      x2 += h * g.z;
-      v2 += dtj * g.z;
-    }
-  }
-  const double t = now + pair_contact_time<DIM>(xi.x - x0, xi.y - x1, xi.z - x2, vi.x - v0,
-                                                vi.y - v1, DIM == 3 ? vi.z - v2 : 0.0, pa + q.a);
+  double t = tr + pair_contact_time<DIM>(r0, r1, r2, vi_r.x - vj_r.x, vi_r.y - vj_r.y,
+                                         DIM == 3 ? vi_r.z - vj_r.z : 0.0, pa + q.a);
+  if (t < now) t = now;
   if (t < s.ct) {
     // two particles whose last collisions were with each other (same periodic image)
     // separate in free flight: relative motion is a straight line, they are no candidates
@@ -237,9 +227,9 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
 void EventDriven::offer_both(int i, int j, int o0, int o1, int o2)
 {
   const Hot &p = H[i], &q = H[j];
-  Vec3 xj = q.x;
-  if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
-  const double t = now + pair_contact_time(p.x - xj, p.v - q.v, p.a + q.a);
+  Vec3 r = p.x - q.x;
+  if (o0 | o1 | o2) r -= Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
+  const double t = now + pair_contact_time(r, p.v - q.v, p.a + q.a);
   Sched &si = S[i], &sj = S[j];
   if (t < si.ct) {
     si.ct = t;

@@ -284,7 +284,6 @@ void EventDriven::cross(int i)
   const Hot &q = H[i];
   Sched &p = S[i];
   const int d = p.xdim, dir = p.xdir;
-  advance(i, p.xt);
   cell_remove(i);
   p.c[d] += dir;
   if (p.c[d] == nc[d]) {
@@ -297,7 +296,8 @@ void EventDriven::cross(int i)
   cell_insert(i);
   stats.crossings++;
   crossings_since_reorder++;
-  const Vec3 xi = q.x, vi = q.v;    // advanced to now above
+  (void) q;
+  const Vec3 xi = pos(i, now), vi = vel(i, now);    // (the stored state is not re-rounded)
   predict_crossing(i, xi, vi);
   if (p.ct < NEVER && C[p.cpartner].ncoll != p.ccount) {
     // the stored collision candidate went stale: look at every neighbouring cell

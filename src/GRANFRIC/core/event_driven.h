@@ -11,6 +11,12 @@
 // scheduled event per particle, invalidation by collision counters, a calendar queue
 // (event_queue.h), and the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
 // the window (periodic images are tracked by integer offsets, not by moving particles).
+// The cell grid cannot change the rounding: a particle's stored state changes only at its own
+// collisions and global events (a cell crossing leaves it alone), and a pair's contact time is
+// computed from the two stored states alone (at the later of their times, the image shift
+// taken off the difference of the positions), whoever predicts it and whenever; so within one
+// time origin (no rebase()) the trajectory is the same bit for bit for any cell width, with
+// cells or neighbour lists.
 //
 // One class, its roles in one file each: the event loop, pair collisions and the particles'
 // slots (event_driven.cpp), the cell grid and its crossings (cells.cpp), the search for
@@ -255,8 +261,8 @@ class EventDriven {
   // at the cost of the changed particles only.
   //   nudge(e, x, v, w)   x, v and w (3 values each, at window time now) are particle e's
   //                own trajectory again, computed with other rounding (by another rank, on
-  //                another cell grid): they replace its state and its predictions stand, as the
-  //                predictions of a particle stand when a cell crossing re-rounds its state.
+  //                another cell grid): they replace its state and its predictions stand (they
+  //                are those of the same trajectory up to rounding).
   //                Only if the new position lies in the particle's cell (else nothing changes
   //                and it returns false: use changed()). The caller bounds the difference.
   //                With neighbour lists it always returns false.
