@@ -47,18 +47,45 @@ inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, c
                                                               int o0, int o1, int o2)
 {
   const Hot &q = H[j], &p = H[i];
+  const Vec3 g = opt.gravity;
   (void) xi, (void) vi;
-  // canonical: from both stored states at tr = max(t_i, t_j), whoever predicts, whenever
-  const double tr = p.t > q.t ? p.t : q.t;
-  const Vec3 xi_r = pos(i, tr), xj_r = pos(j, tr), vi_r = vel(i, tr), vj_r = vel(j, tr);
-  double r0 = xi_r.x - xj_r.x, r1 = xi_r.y - xj_r.y, r2 = xi_r.z - xj_r.z;
+  // Canonical: from both stored states at tr = max(t_i, t_j), whoever predicts the pair and
+  // whenever (the arithmetic of pos() and vel()). Usually i is the later one (it has just
+  // collided): its stored state is then its state at tr.
+  double tr, a0, a1, a2, u0, u1, u2;    // i at tr
+  if (q.t <= p.t) {
+    tr = p.t;
+    a0 = p.x.x, a1 = p.x.y, a2 = p.x.z;
+    u0 = p.v.x, u1 = p.v.y, u2 = p.v.z;
+  } else {
+    tr = q.t;
+    const Vec3 xa = pos(i, tr), va = vel(i, tr);
+    a0 = xa.x, a1 = xa.y, a2 = xa.z;
+    u0 = va.x, u1 = va.y, u2 = va.z;
+  }
+  const double dtj = tr - q.t;    // j at tr
+  double b0 = q.x.x + dtj * q.v.x, b1 = q.x.y + dtj * q.v.y;
+  double b2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
+  double w0 = q.v.x, w1 = q.v.y, w2 = DIM == 3 ? q.v.z : 0.0;
+  if (GRAV) {
+    const double h = 0.5 * dtj * dtj;
+    b0 += h * g.x;
+    b1 += h * g.y;
+    w0 += dtj * g.x;
+    w1 += dtj * g.y;
+    if (DIM == 3) {
+      b2 += h * g.z;
+      w2 += dtj * g.z;
+    }
+  }
+  double r0 = a0 - b0, r1 = a1 - b1, r2 = a2 - b2;
   if (o0 | o1 | o2) {
     r0 -= o0 * L.x;
     r1 -= o1 * L.y;
     if (DIM == 3) r2 -= o2 * L.z;
   }
-  double t = tr + pair_contact_time<DIM>(r0, r1, r2, vi_r.x - vj_r.x, vi_r.y - vj_r.y,
-                                         DIM == 3 ? vi_r.z - vj_r.z : 0.0, pa + q.a);
+  double t = tr + pair_contact_time<DIM>(r0, r1, r2, u0 - w0, u1 - w1, DIM == 3 ? u2 - w2 : 0.0,
+                                         pa + q.a);
   if (t < now) t = now;
   if (t < s.ct) {
     // two particles whose last collisions were with each other (same periodic image)
