@@ -7,6 +7,8 @@
 #ifndef LMP_GRANFRIC_ATOM_RECORD_H
 #define LMP_GRANFRIC_ATOM_RECORD_H
 
+#include "event_driven.h"
+
 #include <cstddef>
 #include <cstring>
 
@@ -29,6 +31,16 @@ struct AtomRecord {
     return r;
   }
   void write(double *b) const { std::memcpy(b, this, sizeof *this); }
+  // the core's particle p takes this atom's state and body (not its last-collision time)
+  void to_particle(granfric::EDParticle p) const
+  {
+    p.x = granfric::Vec3(x[0], x[1], x[2]);
+    p.v = granfric::Vec3(v[0], v[1], v[2]);
+    p.w = granfric::Vec3(w[0], w[1], w[2]);
+    p.a = radius;
+    p.m = mass;
+    p.type = (int) type;
+  }
 };
 
 // where the fields lie in a record of a message, in doubles

@@ -533,12 +533,7 @@ void HardsphereDomainWindow::keep_core(double t0)
     // the last-collision time as its owner has it, unless this rank owned the atom already
     if (!was_mine) ps.t_last = in.tlast;
     if (!same) {
-      ps.x = Vec3(in.x[0], in.x[1], in.x[2]);
-      ps.v = Vec3(in.v[0], in.v[1], in.v[2]);
-      ps.w = Vec3(in.w[0], in.w[1], in.w[2]);
-      ps.a = in.radius;
-      ps.m = in.mass;
-      ps.type = (int) in.type;
+      in.to_particle(ps);
       ed.changed(sl);
       repredicted++;
     }
@@ -588,12 +583,7 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
     }
     const int a = aorder[e];
     const AtomRecord in = record_of(a, t0);
-    p.x = Vec3(in.x[0], in.x[1], in.x[2]);
-    p.v = Vec3(in.v[0], in.v[1], in.v[2]);
-    p.w = Vec3(in.w[0], in.w[1], in.w[2]);
-    p.a = in.radius;
-    p.m = in.mass;
-    p.type = (int) in.type;
+    in.to_particle(p);
     p.t_last = in.tlast;
     stag[e] = (long) in.tag;
     smask[e] = (int) in.mask;

@@ -166,14 +166,8 @@ void HardsphereGatherWindow::fresh_core(double t0)
   ed.resize(ntotal);
   for (int s = 0; s < ntotal; s++) {
     const AtomRecord r = record(order[s], t0);
-    auto p = ed.particle(s);
-    p.x = granfric::Vec3(r.x[0], r.x[1], r.x[2]);
-    p.v = granfric::Vec3(r.v[0], r.v[1], r.v[2]);
-    p.w = granfric::Vec3(r.w[0], r.w[1], r.w[2]);
-    p.a = r.radius;
-    p.m = r.mass;
-    p.type = (int) r.type;
-    p.t_last = r.tlast;
+    r.to_particle(ed.particle(s));
+    ed.particle(s).t_last = r.tlast;
   }
   same_atoms = true;
   ed.set_clock(t0);

@@ -179,12 +179,7 @@ int granfric_kick(double fdr, double vdr, double spin, long seed, int momentum, 
   kicks.spin = spin;
   kicks.seed = seed;
   kicks.momentum = momentum != 0;
-  double mmax = 0.0;
-  for (long i = 0; i < n; i++) mmax = std::max(mmax, m[i]);
-  Kicks::MomentumSums s = kicks.momentum_sums(mmax, (double) n);
-  if (kicks.momentum)
-    for (long i = 0; i < n; i++) kicks.add(s, tags[i], m[i], k, dim);
-  const Vec3 dvcm = kicks.shift(s);
+  const Vec3 dvcm = kicks.local_shift(n, tags, m, nullptr, k, dim);
   for (long i = 0; i < n; i++) {
     Vec3 x, vi(v[3 * i], v[3 * i + 1], v[3 * i + 2]), wi(w[3 * i], w[3 * i + 1], w[3 * i + 2]);
     double t = 0.0, ai = a[i], mi = m[i], tl = -INF;

@@ -57,6 +57,19 @@ Vec3 Kicks::shift(const MomentumSums &s) const
                           from_fixed(s.count[2], s.sp));
 }
 
+Vec3 Kicks::local_shift(long n, const long *tags, const double *m, const uint8_t *driven, long k,
+                        int dim) const
+{
+  if (!momentum) return Vec3();
+  double mmax = 0.0, count = 0.0;
+  for (long i = 0; i < n; i++)
+    if (!driven || driven[i]) mmax = std::max(mmax, m[i]), count += 1.0;
+  MomentumSums s = momentum_sums(mmax, count);
+  for (long i = 0; i < n; i++)
+    if (!driven || driven[i]) add(s, tags[i], m[i], k, dim);
+  return shift(s);
+}
+
 void Kicks::apply(EDParticle p, long tag, long k, int dim, const Vec3 &dvcm) const
 {
   p.v += vdr * Vec3(gaussian(seed, tag, k, 0), gaussian(seed, tag, k, 1),
@@ -81,16 +94,11 @@ void schedule_kicks(EventDriven &ed, const Kicks &kicks, double t0, double dt, l
   kicks.kicks_in(t0, t0 + dt, next, times, index);
   if (times.empty()) return;
   const int n = ed.size(), dim = ed.options().dim;
-  double mmax = 0.0, count = 0.0;
-  for (int e = 0; e < n; e++)
-    if (driven[e]) mmax = std::max(mmax, (double) std::as_const(ed).particle(e).m), count += 1.0;
+  std::vector<double> mass(n);
+  for (int e = 0; e < n; e++) mass[e] = std::as_const(ed).particle(e).m;
   std::vector<Vec3> dvcm(times.size());
   for (size_t m = 0; m < times.size(); m++) {
-    Kicks::MomentumSums s = kicks.momentum_sums(mmax, count);
-    if (kicks.momentum)
-      for (int e = 0; e < n; e++)
-        if (driven[e]) kicks.add(s, tags[e], std::as_const(ed).particle(e).m, index[m], dim);
-    dvcm[m] = kicks.shift(s);
+    dvcm[m] = kicks.local_shift(n, tags, mass.data(), driven, index[m], dim);
     times[m] -= t0;
   }
   ed.set_global_events(times, [&ed, kicks, index, dvcm, tags, driven, n, dim](int g) {

@@ -47,6 +47,10 @@ struct Kicks {
   MomentumSums momentum_sums(double mmax, double n) const;
   void add(MomentumSums &s, long tag, double m, long k, int dim) const;
   Vec3 shift(const MomentumSums &s) const;
+  // the shift of kick k over n particles held by one process: IDs tags, masses m, the driven
+  // ones flagged (driven null: all)
+  Vec3 local_shift(long n, const long *tags, const double *m, const uint8_t *driven, long k,
+                   int dim) const;
 
   // kick k of particle p with ID tag (dim: 2 or 3), less the momentum shift dvcm
   void apply(EDParticle p, long tag, long k, int dim, const Vec3 &dvcm) const;
