@@ -14,15 +14,26 @@
 
 namespace LAMMPS_NS {
 
-// An atom as a window needs it: packed on its owner from LAMMPS's arrays, sent to other ranks
-// in messages of doubles (SIZE per atom), read there. The layout is this struct; the positions
-// of single fields in a message (AtomRecordAt) follow from it.
+// An atom as a window needs it: packed on its owner, sent to other ranks in messages of
+// doubles (SIZE per atom), read there. The layout is this struct; the positions of single
+// fields in a message (AtomRecordAt) follow from it.
+// Within one time origin of the windows (an epoch, see FixHardsphereED::begin_epoch) an atom
+// is the core's stored state, exactly as the core that owns it keeps it: position and velocity
+// at the atom's own time t (its last collision or kick, in epoch time), in the core's frame
+// (unwrapped since the epoch began: LAMMPS's position plus off periods), and the last partner,
+// so that every core that holds the atom predicts and collides it with the same operands.
+// At the start of an epoch it is LAMMPS's atom (t = 0, off = 0, no last partner).
 struct AtomRecord {
   double tag;                   // atom ID
-  double x[3], v[3], w[3];      // position, velocity, angular velocity
+  double xl[3];                 // position in LAMMPS's frame at the window start
+  double x[3], v[3], w[3];      // stored position and velocity (at t), angular velocity
+  double t;                     // the time of x and v (epoch time)
   double radius, mass, type;
-  double tlast;                 // last collision time relative to the window start (-inf: none)
+  double tlast;                 // last collision time (epoch time; -inf: none)
   double mask;                  // group bits
+  double off[3];                // periods between the core's frame and LAMMPS's
+  double partner;               // the ID of the last partner (0: none)
+  double poff[3];               // its image shift (core frames), see EventDriven::set_last_partner
   // the record at b (SIZE doubles of a message), and writing this one there
   static AtomRecord read(const double *b)
   {
@@ -31,15 +42,23 @@ struct AtomRecord {
     return r;
   }
   void write(double *b) const { std::memcpy(b, this, sizeof *this); }
-  // the core's particle p takes this atom's state and body (not its last-collision time)
+  // the core's particle p takes this atom's stored state and body (not its last-collision time)
   void to_particle(granfric::EDParticle p) const
   {
     p.x = granfric::Vec3(x[0], x[1], x[2]);
     p.v = granfric::Vec3(v[0], v[1], v[2]);
+    p.t = t;
     p.w = granfric::Vec3(w[0], w[1], w[2]);
     p.a = radius;
     p.m = mass;
     p.type = (int) type;
+  }
+  // does particle p hold this atom's state and body, bit for bit?
+  bool held_by(granfric::EDParticleView p) const
+  {
+    return p.x.x == x[0] && p.x.y == x[1] && p.x.z == x[2] && p.v.x == v[0] && p.v.y == v[1] &&
+        p.v.z == v[2] && p.t == t && p.w.x == w[0] && p.w.y == w[1] && p.w.z == w[2] &&
+        p.a == radius && p.m == mass && p.type == (int) type && p.t_last == tlast;
   }
 };
 
@@ -47,6 +66,7 @@ struct AtomRecord {
 struct AtomRecordAt {
   static constexpr int SIZE = sizeof(AtomRecord) / sizeof(double);
   static constexpr int TAG = offsetof(AtomRecord, tag) / sizeof(double);
+  static constexpr int XL = offsetof(AtomRecord, xl) / sizeof(double);
   static constexpr int X = offsetof(AtomRecord, x) / sizeof(double);
   static constexpr int V = offsetof(AtomRecord, v) / sizeof(double);
   static constexpr int W = offsetof(AtomRecord, w) / sizeof(double);

@@ -114,11 +114,10 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
   // per-atom arrays (LAMMPS takes callbacks only from a fix's constructor): the last collision
   // times, kept only for the TC model, and the tallies, allocated when first asked for
   atom->add_callback(Atom::GROW);
-  if (tc > 0.0) {
-    FixHardsphereED::grow_arrays(atom->nmax);
-    maxexchange = 1;
-    atom->add_callback(Atom::RESTART);
-  }
+  if (tc > 0.0) atom->add_callback(Atom::RESTART);
+  if (parallel == DOMAIN && comm->nprocs > 1) memory->create(xstate, 1, XS_SIZE, "hardsphere/ed:xstate");
+  FixHardsphereED::grow_arrays(atom->nmax);
+  maxexchange = (tlast ? 1 : 0) + (xstate ? XS_SIZE : 0);
 }
 
 // the place of value among the allowed values of keyword, or an error that lists them
@@ -141,6 +140,7 @@ FixHardsphereED::~FixHardsphereED()
   atom->delete_callback(id, Atom::GROW);
   memory->destroy(tlast);
   memory->destroy(atally);
+  memory->destroy(xstate);
 }
 
 FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, const char *who)
@@ -163,7 +163,7 @@ void FixHardsphereED::request_atom_tallies()
   memory->create(atally, atom->nmax, NTALLY, "hardsphere/ed:atally");
   atally_n = 0;
   grow_arrays(atom->nmax);
-  maxexchange = (tlast ? 1 : 0) + NTALLY;
+  maxexchange = (tlast ? 1 : 0) + (xstate ? XS_SIZE : 0) + NTALLY;
 }
 
 void FixHardsphereED::post_force_respa(int vflag, int ilevel, int)
@@ -262,23 +262,24 @@ void FixHardsphereED::setup(int vflag)
                "diameter {})", point, 2.0 * atom_value(point, [&](int i) { return radius[i]; }));
   check_box_fits_atoms();
   check_atoms_between_walls();
-  // A new run may bring new coefficients, a new box, new walls or new atoms. The event queue of
-  // the last run is kept only if the core's configuration is the same in every respect; the
-  // atoms themselves are compared at the first window (as between steps). Vibrating walls
-  // depend on the absolute time, which reset_timestep can change: always start afresh then.
+  // A new run may bring new coefficients, a new box, new walls or new atoms. The epoch (and the
+  // event queue) of the last run goes on only if the core's configuration is the same in every
+  // respect; the atoms themselves are compared at the first window (as between steps).
+  // Vibrating walls depend on the absolute time, which reset_timestep can change: always a new
+  // epoch then.
   const granfric::EDOptions o = core_options();
+  const std::vector<granfric::LawParams> laws = law_table();
   bool vibrating = false;
   for (const auto &w : o.walls) vibrating = vibrating || w.vibrating();
-  const bool same = gwin->kept() && !vibrating && ed.size() > 0 &&
-      ed.configured_as(o, atom->ntypes, law_table());
-  if (dwin->kept()) {
-    // the core of the last domain window: its next window compares the configuration (with
-    // its own cell grid) and every atom itself
-    if (vibrating) dwin->invalidate();
-  } else if (!same) {
+  const bool same = !vibrating && run_ntypes == atom->ntypes &&
+      granfric::EventDriven::same_configuration(o, atom->ntypes, laws, run_options, run_ntypes, run_laws);
+  if (!same) {
     configure_core(o);
-    gwin->invalidate();
+    invalidate_windows();
   }
+  run_options = o;
+  run_laws = laws;
+  run_ntypes = atom->ntypes;
   check_overlaps = true;    // (a kept queue continues an exact trajectory: nothing to check)
 }
 
@@ -378,11 +379,7 @@ void FixHardsphereED::report_overlaps(bool partial)
     MPI_Bcast(keys, 2, MPI_LONG, out.rank, world);
     ki = keys[0];
     kj = keys[1];
-  } else if (ki >= 0) {
-    // gathered window: the keys are positions in atom-ID order
-    ki = (long) gwin->tag_of_particle(ki);
-    kj = (long) gwin->tag_of_particle(kj);
-  }
+  }    // (the keys are the atom IDs)
   if (n == 0) return;
   if (!allow_overlap) {
     invalidate_windows();
@@ -457,6 +454,21 @@ void FixHardsphereED::invalidate_windows()
 {
   gwin->invalidate();
   dwin->invalidate();
+  epoch_due = true;
+}
+
+bool FixHardsphereED::epoch_starts() const
+{
+  const bigint first = update->ntimestep - 1;    // (this window's first step)
+  return epoch_due || update->dt != epoch_dt || first < epoch_step || first - epoch_step >= EPOCH_WINDOWS;
+}
+
+void FixHardsphereED::begin_epoch(double t0)
+{
+  epoch_step = update->ntimestep - 1;
+  epoch_clock = t0;
+  epoch_dt = update->dt;
+  epoch_due = false;
 }
 
 void FixHardsphereED::core_failed(const std::exception &e, bool collective)
@@ -486,22 +498,62 @@ int FixHardsphereED::allgather(const std::vector<double> &send, std::vector<doub
   return total;
 }
 
-// owned atom i as a window takes it (tlast relative to the window start t0)
-AtomRecord FixHardsphereED::atom_record(int i, double t0) const
+// owned atom i as a window takes it: its stored state in the epoch (exact), or LAMMPS's atom
+// at the start of an epoch
+AtomRecord FixHardsphereED::atom_record(int i, bool exact) const
 {
   AtomRecord r;
   r.tag = (double) atom->tag[i];
+  const double *xs = exact ? xstate[i] : nullptr;
   for (int d = 0; d < 3; d++) {
-    r.x[d] = atom->x[i][d];
-    r.v[d] = atom->v[i][d];
+    r.xl[d] = atom->x[i][d];
+    r.x[d] = xs ? xs[XS_X + d] : atom->x[i][d];
+    r.v[d] = xs ? xs[XS_V + d] : atom->v[i][d];
     r.w[d] = atom->omega[i][d];
+    r.off[d] = xs ? xs[XS_OFF + d] : 0.0;
+    r.poff[d] = xs ? xs[XS_POFF + d] : 0.0;
   }
+  r.t = xs ? xs[XS_T] : 0.0;
   r.radius = atom->radius[i];
   r.mass = atom->rmass[i];
   r.type = (double) atom->type[i];
-  r.tlast = tlast_since(i, t0);
+  r.tlast = xs ? xs[XS_TLAST] : tlast_since(i, epoch_clock);
   r.mask = (double) atom->mask[i];
+  r.partner = xs ? xs[XS_PARTNER] : 0.0;
   return r;
+}
+
+void FixHardsphereED::store_state(int i, int e, const double *off, double partner)
+{
+  const auto p = std::as_const(ed).particle(e);
+  double *xs = xstate[i];
+  p.x.to(xs + XS_X);
+  p.v.to(xs + XS_V);
+  xs[XS_T] = p.t;
+  for (int d = 0; d < 3; d++) xs[XS_OFF + d] = off[d];
+  xs[XS_PARTNER] = partner;
+  const int *po = ed.last_offset(e);
+  for (int d = 0; d < 3; d++) xs[XS_POFF + d] = partner > 0.0 ? po[d] : 0.0;
+  xs[XS_TLAST] = p.t_last;
+}
+
+bool FixHardsphereED::state_holds(int i, double T0)
+{
+  double *xs = xstate[i];
+  if (std::isnan(xs[XS_T])) return false;
+  const granfric::Vec3 x(xs[XS_X], xs[XS_X + 1], xs[XS_X + 2]), v(xs[XS_V], xs[XS_V + 1], xs[XS_V + 2]);
+  const granfric::Vec3 g(gravity[0], gravity[1], gravity[2]);
+  const double dt = T0 - xs[XS_T];
+  const granfric::Vec3 xw = granfric::EventDriven::flight_x(x, v, dt, g, granfric::norm2(g) != 0.0);
+  const granfric::Vec3 vw = granfric::EventDriven::flight_v(v, dt, g);
+  const hardsphere::FarWrap wrap(domain);
+  for (int d = 0; d < 3; d++) {
+    if (atom->v[i][d] != vw[d]) return false;
+    int off = (int) xs[XS_OFF + d];
+    if (!wrap.holds(d, atom->x[i][d], wrap.written(d, xw[d], off), off)) return false;
+    xs[XS_OFF + d] = off;
+  }
+  return true;
 }
 
 // the kicks of every fix hardsphere/kick in [t0, t0 + dt) as global events of the core, applied
@@ -518,12 +570,16 @@ void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<tag
   };
   const int dim = domain->dimension;
   std::vector<Kick> all;
+  // (epoch times: kicks of this window stay in [T0, T1) whatever the rounding)
+  const double T0 = epoch_time(update->ntimestep - 1), T1 = epoch_time(update->ntimestep);
+  const double last = std::nextafter(T1, -granfric::INF);
   for (int f = 0; f < (int) kicks.size(); f++) {
     std::vector<double> times;
     std::vector<long> index;
     kicks[f]->kicks_in(t0, t0 + dt, times, index);
     for (size_t m = 0; m < times.size(); m++)
-      all.push_back({times[m] - t0, f, index[m], kicks[f]->momentum_shift(index[m], dim)});
+      all.push_back({std::min(std::max(times[m] - epoch_clock, T0), last), f, index[m],
+                     kicks[f]->momentum_shift(index[m], dim)});
   }
   std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
   std::vector<double> times(all.size());
@@ -587,13 +643,16 @@ void FixHardsphereED::initial_integrate(int vflag)
     }
     totals[WINDOWS_REDONE] += 1.0;    // a conflict: the whole window again, gathered
     widen = MIN(64.0, 2.0 * widen);
+    gwin->run(t0, dt, true);
+    finish_window(dt);
+    return;
   }
-  gwin->run(t0, dt);
+  gwin->run(t0, dt, false);
   finish_window(dt);
 }
 
 // owned atom i is core particle s of the window that began at t0: its tallies of the step
-void FixHardsphereED::store_tally(int i, int s, double t0)
+void FixHardsphereED::store_tally(int i, int s)
 {
   const auto &p = ed.particle_tally(s);
   double *a = atally[i];
@@ -603,7 +662,7 @@ void FixHardsphereED::store_tally(int i, int s, double t0)
   a[T_DETR] = p.dE_tr * force->mvv2e;
   a[T_DEROT] = p.dE_rot * force->mvv2e;
   a[T_DEWALL] = p.dE_wall * force->mvv2e;
-  if (p.t_last > -INF) a[T_LAST] = t0 + p.t_last;
+  if (p.t_last > -INF) a[T_LAST] = epoch_clock + p.t_last;
 }
 
 // the window's statistics (identical on every rank) into the running totals; the collision
@@ -644,6 +703,7 @@ double FixHardsphereED::compute_vector(int n)
 double FixHardsphereED::memory_usage()
 {
   return (tlast ? (double) atom->nmax * sizeof(double) : 0.0) +
+      (xstate ? (double) atom->nmax * XS_SIZE * sizeof(double) : 0.0) +
       (atally ? (double) atom->nmax * NTALLY * sizeof(double) : 0.0) + (double) ed.memory_bytes() +
       gwin->memory_usage() + dwin->memory_usage();
 }
@@ -656,6 +716,11 @@ void FixHardsphereED::grow_arrays(int nmax)
     for (int i = tlast_n; i < nmax; i++) tlast[i] = -INF;    // (new atoms: no collision yet)
     tlast_n = std::max(tlast_n, nmax);
   }
+  if (xstate) {
+    memory->grow(xstate, nmax, XS_SIZE, "hardsphere/ed:xstate");
+    for (int i = xstate_n; i < nmax; i++) xstate[i][XS_T] = std::nan("");    // (none yet)
+    xstate_n = std::max(xstate_n, nmax);
+  }
   if (atally) {
     memory->grow(atally, nmax, NTALLY, "hardsphere/ed:atally");
     for (int i = atally_n; i < nmax; i++)
@@ -667,6 +732,7 @@ void FixHardsphereED::grow_arrays(int nmax)
 void FixHardsphereED::copy_arrays(int i, int j, int)
 {
   if (tlast) tlast[j] = tlast[i];
+  if (xstate) memcpy(xstate[j], xstate[i], XS_SIZE * sizeof(double));
   if (atally) memcpy(atally[j], atally[i], NTALLY * sizeof(double));
 }
 
@@ -674,6 +740,8 @@ int FixHardsphereED::pack_exchange(int i, double *buf)
 {
   int m = 0;
   if (tlast) buf[m++] = tlast[i];
+  if (xstate)
+    for (int k = 0; k < XS_SIZE; k++) buf[m++] = xstate[i][k];
   if (atally)
     for (int k = 0; k < NTALLY; k++) buf[m++] = atally[i][k];
   return m;
@@ -683,6 +751,8 @@ int FixHardsphereED::unpack_exchange(int nlocal, double *buf)
 {
   int m = 0;
   if (tlast) tlast[nlocal] = buf[m++];
+  if (xstate)
+    for (int k = 0; k < XS_SIZE; k++) xstate[nlocal][k] = buf[m++];
   if (atally)
     for (int k = 0; k < NTALLY; k++) atally[nlocal][k] = buf[m++];
   return m;

@@ -121,6 +121,43 @@ class FixHardsphereED : public Fix {
   {
     if (tlast) tlast[i] = t_last == -granfric::INF ? -granfric::INF : t_last + t0;
   }
+
+  // ---- one time origin of the windows (an epoch)
+  // Within an epoch the core's times run on from its start: a window ends at epoch time
+  // (step - epoch_step) dt, and a particle's stored state (position and velocity at the time of
+  // its last collision or kick) changes only by its own events, never by a shift of the time
+  // origin. Every pair quantity is then computed from the same operands on any rank count and
+  // whenever it is computed, so that a run gives the same bits serially and in domain windows.
+  // A new epoch starts from LAMMPS's atoms as they are: at the first window, after anything
+  // other than this fix changed atoms or the configuration, after a restart file was written,
+  // and every EPOCH_WINDOWS windows (which bounds how far the times run: the rounding of the
+  // core's times stays that of a short run); every rank and a serial run start epochs at the
+  // same steps.
+  static constexpr bigint EPOCH_WINDOWS = 1000;
+  bigint epoch_step = 0;                 // the step at which the epoch's time is 0
+  double epoch_clock = 0.0;              // the absolute time then
+  double epoch_dt = 0.0;                 // its step length
+  bool epoch_due = true;                 // a new epoch at the next window
+  // the configuration of the last run (a new run with another one starts a new epoch)
+  granfric::EDOptions run_options;
+  std::vector<granfric::LawParams> run_laws;
+  int run_ntypes = -1;
+  bool epoch_starts() const;             // must the next window start a new epoch?
+  void begin_epoch(double t0);           // a new epoch at this window (absolute start t0)
+  double epoch_time(bigint step) const { return (double) (step - epoch_step) * epoch_dt; }
+  // Per atom, for windows on several ranks (parallel domain): the atom's stored state as the
+  // core that last owned it left it (AtomRecord), so that it goes with the atom to another rank
+  // and a window built afresh (a gathered redo, a new cell grid) continues it exactly.
+  enum { XS_X = 0, XS_V = 3, XS_T = 6, XS_OFF = 7, XS_PARTNER = 10, XS_POFF = 11, XS_TLAST = 14,
+         XS_SIZE = 15 };
+  double **xstate = nullptr;             // (null unless kept)
+  int xstate_n = 0;                      // rows set (t = NaN: none yet, when grown)
+  // owned atom i from core particle e at window end time T1 (off: its periods; partner: the
+  // last partner's ID, 0: none)
+  void store_state(int i, int e, const double *off, double partner);
+  // does owned atom i still hold what the last window wrote (its state at epoch time T0)?
+  // LAMMPS may have wrapped it into the box: its periods follow
+  bool state_holds(int i, double T0);
   class PairHardsphere *pair;
 
   granfric::EventDriven ed;
@@ -163,7 +200,8 @@ class FixHardsphereED : public Fix {
   }
   static void wrap_image(imageint &image, const int *dimg);
   void finish_window(double dt);
-  AtomRecord atom_record(int i, double t0) const;    // owned atom i, window start t0
+  // owned atom i: its stored state (exact: from xstate) or LAMMPS's at an epoch start
+  AtomRecord atom_record(int i, bool exact) const;
   int allgather(const std::vector<double> &send, std::vector<double> &recv);
   bool check_overlaps = false;
   bool allow_overlap = false;            // keyword overlap allow: overlapping pairs separate
@@ -188,14 +226,15 @@ class FixHardsphereED : public Fix {
   double **atally = nullptr;                    // per-atom tallies (NTALLY per atom), or null
   int atally_n = 0;                             // rows of atally set (to zero when grown)
   double wstep[6] = {0, 0, 0, 0, 0, 0};         // the step's global collision virial
-  void store_tally(int i, int s, double t0);
+  void store_tally(int i, int s);
   std::vector<granfric::EDCollisionRecord> clog;
   std::vector<CollisionRow> rows;
-  // the rows of the core's collision records of the window that began at t0, with the IDs and
+  // the rows of the core's collision records of the window (epoch times), with the IDs and
   // masks of its particles (by core index)
   template <class TAGS>
-  void keep_rows(double t0, const TAGS &tags, const std::vector<int> &masks)
+  void keep_rows(const TAGS &tags, const std::vector<int> &masks)
   {
+    const double t0 = epoch_clock;
     ed.record_collisions(nullptr);
     rows.clear();
     for (const auto &c : clog) {

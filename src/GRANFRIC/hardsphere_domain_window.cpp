@@ -31,6 +31,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
+#include "update.h"
 
 #include <algorithm>
 #include <cmath>
@@ -96,19 +97,22 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   step = dt;
   received = 0;
   base = fix.core_options();
+  epoch_now = new_epoch(t0);
+  T0 = fix.epoch_time(update->ntimestep - 1);
+  T1 = fix.epoch_time(update->ntimestep);
   bound_reach(dt);
   make_regions();
-  send_copies(t0);
+  send_copies();
   find_copies();
   order_by_id();
-  load_core(t0);
+  load_core();
   watch_events();
   bool fail = !advance(t0, dt);
   fail = fail || !guard(dt);
   ed.track_fast(INF);
   influence_times();
   publish_histories();
-  const int conflicts = fail ? 0 : compare_histories(dt);
+  const int conflicts = fail ? 0 : compare_histories();
   long local[3] = {conflicts, fail ? 1 : 0, received}, global[3];
   MPI_Allreduce(local, global, 3, MPI_LONG, MPI_SUM, world);
   double *totals = fix.totals;
@@ -122,14 +126,33 @@ bool HardsphereDomainWindow::run(double t0, double dt)
     valid = false;
     return false;
   }
-  commit(t0, dt);
+  commit();
   sum_statistics();
   fix.gwin->invalidate();
   // the core is kept for the next window (it then starts at this window's end)
   valid = true;
-  fix.keep_rows(t0, stag, smask);    // (the collisions this rank booked)
-  last_dt = dt;
+  fix.keep_rows(stag, smask);    // (the collisions this rank booked)
   sowned_prev.assign(sowned.begin(), sowned.end());
+  return true;
+}
+
+// ------------------------------------------------ a new epoch?
+// when the fix says so, or when anything other than this fix changed atoms since the last
+// window (an atom that does not hold what was written, a new atom, one fewer): all ranks alike,
+// as a serial run decides. A new epoch takes every atom from LAMMPS as it is.
+bool HardsphereDomainWindow::new_epoch(double t0)
+{
+  int due = fix.epoch_starts() || atom->natoms != last_natoms ? 1 : 0;
+  const double start = fix.epoch_time(update->ntimestep - 1);
+  for (int i = 0; i < nlocal && !due; i++) due = fix.state_holds(i, start) ? 0 : 1;
+  MPI_Allreduce(MPI_IN_PLACE, &due, 1, MPI_INT, MPI_MAX, world);
+  last_natoms = atom->natoms;
+  if (!due) return false;
+  fix.begin_epoch(t0);
+  for (int i = 0; i < nlocal; i++) {
+    double *xs = fix.xstate[i];
+    for (int d = 0; d < 3; d++) xs[FixHardsphereED::XS_OFF + d] = 0.0;
+  }
   return true;
 }
 
@@ -230,7 +253,7 @@ bool HardsphereDomainWindow::inside(const Region &R, const double *x, int *s) co
 // tries x - L, x and x + L; the span has a margin of rounding, so that an atom the receiver's
 // inside() accepts is always sent (it drops what it does not need). One test at a time over
 // all atoms: straight-line code per atom)
-void HardsphereDomainWindow::send_copies(double t0)
+void HardsphereDomainWindow::send_copies()
 {
   struct Test {
     int rank = 0, nd = 0, dims[3];
@@ -282,7 +305,7 @@ void HardsphereDomainWindow::send_copies(double t0)
   rec.resize(sendlist.size() * NPACK);
   send_index.assign(nlocal, -1);
   for (size_t k = 0; k < sendlist.size(); k++) {
-    fix.atom_record(sendlist[k], t0).write(&rec[k * NPACK]);
+    fix.atom_record(sendlist[k], !epoch_now).write(&rec[k * NPACK]);
     send_index[sendlist[k]] = (int) k;
   }
   scounts.assign(comm->nprocs, 0);
@@ -331,7 +354,7 @@ void HardsphereDomainWindow::find_copies()
     for (int p = 0; p < comm->nprocs; p++) {
       if (p == comm->me) continue;
       for (int k = fix.displs[p]; k < fix.displs[p] + fix.counts[p]; k += NPACK) {
-        if (!inside(R, &drecv[k + AtomRecordAt::X], s3)) continue;
+        if (!inside(R, &drecv[k + AtomRecordAt::XL], s3)) continue;
         gsrc.push_back(k);
         gshift.insert(gshift.end(), s3, s3 + 3);
       }
@@ -362,45 +385,55 @@ void HardsphereDomainWindow::order_by_id()
   std::sort(aorder.begin(), aorder.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
 }
 
-// atom a of this window: an owned atom (a < nlocal) from LAMMPS, a copy as received, at the
-// periodic image inside this rank's region
-AtomRecord HardsphereDomainWindow::record_of(int a, double t0) const
+// atom a of this window: an owned atom (a < nlocal), or a copy as its owner sent it
+AtomRecord HardsphereDomainWindow::record_of(int a) const
 {
-  if (a < nlocal) return fix.atom_record(a, t0);
-  AtomRecord r = AtomRecord::read(&drecv[gsrc[a - nlocal]]);
-  const int *sh = &gshift[3 * (a - nlocal)];
-  for (int d = 0; d < 3; d++) r.x[d] += sh[d] * domain->prd[d];
-  return r;
+  if (a < nlocal) return fix.atom_record(a, !epoch_now);
+  return AtomRecord::read(&drecv[gsrc[a - nlocal]]);
+}
+
+// the frame shift of atom a (record r) in this rank's core: its stored position lies that many
+// periods below where this rank's region sees it (the copy's image shift less its periods)
+void HardsphereDomainWindow::frame_of(int a, const AtomRecord &r, int *f) const
+{
+  for (int d = 0; d < 3; d++) {
+    f[d] = 0;
+    if (d >= dim || grid_whole[d] || !domain->periodicity[d]) continue;
+    f[d] = (a < nlocal ? 0 : gshift[3 * (a - nlocal) + d]) - (int) r.off[d];
+  }
+}
+
+// the slot of the last partner of atom r here (-1: none, or not here)
+int HardsphereDomainWindow::partner_slot(const AtomRecord &r) const
+{
+  return r.partner > 0.0 ? slot_of_tag.get((long) r.partner) : -1;
 }
 
 // ------------------------------------------------ the local system: kept, or afresh
 // The core of the last window is kept when its cell grid still covers this window's region and
 // nothing else changed; its slots are matched to this window's atoms by ID. Each atom is taken
-// as it arrives (its owner's state, or LAMMPS's for owned atoms); one whose state differs from
-// its slot's by more than rounding is predicted afresh (ed.changed), one that differs by
-// rounding only takes the state and keeps its predictions (ed.nudge), slots of atoms no longer
-// here are emptied, new atoms fill empty slots. Owned atoms arrive as this rank left them, so
-// mostly only the copies that lacked a partner, or entered the region, are predicted again.
-// The result is the exact trajectory of the same system, as a fresh start would give it, up to
-// rounding.
-void HardsphereDomainWindow::load_core(double t0)
+// as its record says (its owner's stored state, or the one this rank left for an owned atom);
+// one whose state, frame or last partner differs from its slot's is predicted afresh
+// (ed.changed), slots of atoms no longer here are emptied, new atoms fill empty slots. Owned
+// atoms arrive as this rank left them, so mostly only the copies that lacked a partner, or
+// entered the region, are predicted again. A core built afresh continues the stored states
+// too (start_at), except at the start of an epoch. Either way the predictions are those the
+// owners' cores hold, bit for bit.
+void HardsphereDomainWindow::load_core()
 {
   granfric::EDOptions o = base;
-  // every rank takes the cell width of the whole system (the same number of cells in a
-  // dimension a rank covers whole, so that copies cross cells where their owners do: fewer
-  // rounding differences between them), not that of its region with its empty margins
-  // (cells: a kept core takes its copies' states from their owners by nudge(), which lists
-  // refuse)
+  // every rank takes the cell width of the whole system, not that of its region with its
+  // empty margins (cells: neighbour lists of copies would be rebuilt every window)
   o.neighbours = granfric::EDOptions::CELLS;
   if (dim == 2 && domain->prd[0] * domain->prd[1] > 0.0)
     o.cell_width = granfric::EventDriven::auto_cell_width(
         2, 2.0 * gmx[1] * (1.0 + 1e-10), (double) atom->natoms / (domain->prd[0] * domain->prd[1]));
   repredicted = owned_changed = 0;
-  keep = can_keep(o);
+  keep = !epoch_now && can_keep(o);
   if (keep)
-    keep_core(t0);
+    keep_core();
   else
-    fresh_core(o, t0);
+    fresh_core(o);
 }
 
 // whether the last window's core covers this window (its grid holds the region, its slots
@@ -417,6 +450,7 @@ bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
     o.hi[d] = grid_hi[d];
     o.periodic[d] = false;
     o.open[d] = true;
+    o.period[d] = domain->prd[d];
   }
   ok = ok && ed.configured_as(o, atom->ntypes, fix.law_table());
   inslot.resize(nlocal + nghost);    // (set for every atom before use)
@@ -456,41 +490,9 @@ bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
   return true;
 }
 
-// Rounding: a copy's state as its owner computed it differs in the last bits from the same
-// atom's state as this rank computed it (the owner sends it advanced to the window start, and
-// predictions made in other windows round their time shifts differently; copies across a
-// periodic boundary sit at shifted coordinates), and chaos amplifies that within a
-// window (measured, 2 ranks, N = 99856, fraction 0.3: all but 0.1 % of such differences below
-// 1e-12 of the values' scales, none above 1e-11; at 0.05 77 % below 1e-12, up to 1e-8). A copy
-// that lacked a partner differs by 1e-2 or more. Within ROUND of the scales the slot keeps its
-// predictions: they are those of the same trajectory up to rounding.
-bool HardsphereDomainWindow::rounding_only(int sl, const AtomRecord &r) const
-{
-  constexpr double ROUND = 1e-12;
-  const double vround = ROUND * (gmx[0] + 2.0 * vwall + g * step);
-  const double wround = vround / std::max(gmx[1], 1e-300);
-  const auto p = std::as_const(ed).particle(sl);
-  if (p.a != r.radius || p.m != r.mass || p.type != (int) r.type) return false;
-  double xs[3], vs[3], ws[3];
-  ed.state(sl, 0.0, xs, vs, ws);
-  for (int d = 0; d < dim; d++)
-    if (std::fabs(r.x[d] - xs[d]) > ROUND * (std::fabs(xs[d]) + r.radius) ||
-        std::fabs(r.v[d] - vs[d]) > vround)
-      return false;
-  for (int d = 0; d < 3; d++)
-    if (std::fabs(r.w[d] - ws[d]) > wround) return false;
-  return true;
-}
-
 // the kept core, its slots matched to this window's atoms (can_keep)
-void HardsphereDomainWindow::keep_core(double t0)
+void HardsphereDomainWindow::keep_core()
 {
-  double *xa = nlocal > 0 ? atom->x[0] : nullptr, *va = nlocal > 0 ? atom->v[0] : nullptr;
-  double *wa = nlocal > 0 ? atom->omega[0] : nullptr;
-  const double *radius = atom->radius, *rmass = atom->rmass;
-  const int *type = atom->type, *mask = atom->mask;
-  ed.rebase(last_dt);
-  ed.set_clock(t0);
   for (int sl : rm) {
     ed.remove(sl);    // an atom no longer in this rank's region
     slot_of_tag.erase(stag[sl]);
@@ -498,47 +500,42 @@ void HardsphereDomainWindow::keep_core(double t0)
     smask[sl] = 0;
     free_slots.push_back(sl);
   }
+  // (first every atom's slot, so that last partners can be found)
+  for (int a : aorder) {
+    if (inslot[a] >= 0) continue;
+    const long t = tag_of(a);
+    const int sl = free_slots.back();
+    free_slots.pop_back();
+    slot_of_tag.set(t, sl);
+    stag[sl] = t;
+    inslot[a] = sl;
+  }
   cslot.clear();
   sowned.assign(ed.size(), 0);
   lslot.resize(nlocal);
-  const uint8_t *prev = sowned_prev.data();
   for (int a : aorder) {
-    int sl = inslot[a];
-    const bool own = a < nlocal;
-    const bool was_mine = own && sl >= 0 && prev[sl];
-    // an atom this rank owned and wrote back: compared in place (most of them are unchanged)
-    if (was_mine) {
-      if (ed.holds(sl, 0.0, xa + 3 * a, va + 3 * a, wa + 3 * a, radius[a], rmass[a], type[a])) {
-        smask[sl] = mask[a];
-        sowned[sl] = 1;
-        lslot[a] = sl;
-        continue;
-      }
-      owned_changed++;    // something other than this fix changed it
-    }
-    const AtomRecord in = record_of(a, t0);
-    // (does the slot hold this state bit for bit, at window time 0? or the same trajectory
-    // with other rounding, as its owner computed it on another cell grid: then the state is
-    // taken and the slot's predictions stand)
-    const bool same = sl >= 0 && !was_mine &&
-        (ed.holds(sl, 0.0, in.x, in.v, in.w, in.radius, in.mass, (int) in.type) ||
-         (rounding_only(sl, in) && ed.nudge(sl, in.x, in.v, in.w)));
-    if (sl < 0) {
-      sl = free_slots.back();
-      free_slots.pop_back();
-      slot_of_tag.set((long) in.tag, sl);
-      stag[sl] = (long) in.tag;
-    }
-    auto ps = ed.particle(sl);
-    // the last-collision time as its owner has it, unless this rank owned the atom already
-    if (!was_mine) ps.t_last = in.tlast;
+    const int sl = inslot[a];
+    const AtomRecord in = record_of(a);
+    int f[3];
+    frame_of(a, in, f);
+    const int ps = partner_slot(in);
+    const int *fs = ed.frame(sl), *po = ed.last_offset(sl);
+    bool same = ed.present(sl) && in.held_by(std::as_const(ed).particle(sl)) && ed.last_partner(sl) == ps;
+    for (int d = 0; d < 3 && same; d++)
+      same = (fs ? fs[d] : 0) == f[d] && (ps < 0 || po[d] == (int) in.poff[d]);
     if (!same) {
-      in.to_particle(ps);
-      ed.changed(sl);
+      auto p = ed.particle(sl);
+      in.to_particle(p);
+      p.t_last = in.tlast;
+      ed.set_frame(sl, f);
+      ed.changed(sl, true);
+      const int poff[3] = {(int) in.poff[0], (int) in.poff[1], (int) in.poff[2]};
+      ed.set_last_partner(sl, ps, poff);
       repredicted++;
+      if (a < nlocal && sowned_prev[sl]) owned_changed++;
     }
     smask[sl] = (int) in.mask;
-    if (own) {
+    if (a < nlocal) {
       sowned[sl] = 1;
       lslot[a] = sl;
     } else {
@@ -549,7 +546,7 @@ void HardsphereDomainWindow::keep_core(double t0)
 
 // afresh: the atoms in slots 0..n-1 in the order of their IDs, then empty slots for later
 // windows; the cell grid covers this window's region and a margin W
-void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
+void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o)
 {
   const Region &R = reg[comm->me];
   cslot.clear();
@@ -562,6 +559,7 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
     o.hi[d] = grid_hi[d];
     o.periodic[d] = false;
     o.open[d] = true;
+    o.period[d] = domain->prd[d];
   }
   fix.configure_core(o, false);
   const int n = nlocal + nghost, ns = n + n / 16 + 64;
@@ -582,9 +580,12 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
       continue;
     }
     const int a = aorder[e];
-    const AtomRecord in = record_of(a, t0);
+    const AtomRecord in = record_of(a);
     in.to_particle(p);
     p.t_last = in.tlast;
+    int f[3];
+    frame_of(a, in, f);
+    ed.set_frame(e, f);
     stag[e] = (long) in.tag;
     smask[e] = (int) in.mask;
     if (a < nlocal) {
@@ -595,8 +596,20 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o, double t0)
     }
     slot_of_tag.set(stag[e], e);
   }
-  ed.set_clock(t0);
-  fix.start_core(false);
+  for (int e = 0; e < n && !epoch_now; e++) {
+    const AtomRecord in = record_of(aorder[e]);
+    const int poff[3] = {(int) in.poff[0], (int) in.poff[1], (int) in.poff[2]};
+    ed.set_last_partner(e, partner_slot(in), poff);
+  }
+  ed.set_clock(fix.epoch_clock);
+  try {
+    if (epoch_now)
+      ed.start();
+    else
+      ed.start_at(T0);
+  } catch (std::exception &e) {
+    fix.core_failed(e, false);
+  }
   repredicted = n;
   fix.totals[FixHardsphereED::QUEUE_REBUILDS] += 1.0;
 }
@@ -655,7 +668,7 @@ bool HardsphereDomainWindow::advance(double t0, double dt)
   ed.record_collisions(fix.want_rows ? &fix.clog : nullptr);
   bool ok = true;
   try {
-    fix.last = ed.advance_to(dt);
+    fix.last = ed.advance_to(T1);
   } catch (std::exception &) {
     ok = false;
   }
@@ -804,14 +817,10 @@ void HardsphereDomainWindow::publish_histories()
 }
 
 // ------------------------------------------------ compare where it mattered
-// Tolerances: a copy that went wrong (a partner it lacked) differs from its owner's record by a
-// whole event (count or partner) or by O(1) in velocity after it. Rounding differences (copies
-// across periodic boundaries sit at shifted coordinates, and cell grids differ, so states are
-// advanced at different intermediate times) are amplified by chaos, by about 2 lambda / sigma
-// per collision; they count as conflicts (the window is redone, so nothing is lost but time)
-// once they exceed 1e-6 of the scales, which takes a window of several collisions per atom in a
-// dilute gas (measured: doc/Howto_hardsphere_parallel). Returns the copies in conflict.
-int HardsphereDomainWindow::compare_histories(double dt)
+// Exactly: a copy's events up to its influence time must be its owner's, bit for bit (the
+// same stored states give the same predictions and collisions on every rank). A copy that went
+// wrong (a partner it lacked) differs by a whole event or more. Returns the copies in conflict.
+int HardsphereDomainWindow::compare_histories()
 {
   // where each copy's published history starts in hrecv (-1: none; every copy's owner sent it)
   published.assign(ncopy, -1);
@@ -824,8 +833,6 @@ int HardsphereDomainWindow::compare_histories(double dt)
       k += 2 + (size_t) hrecv[k + 1] * NEV;
     }
   }
-  const double ttol = 1e-6 * dt, vtol = 1e-6 * (gmx[0] + 2.0 * vwall + g * dt);
-  const double wtol = vtol / std::max(gmx[1], 1e-300);
   int conflicts = 0;
   double mine[NEV];
   for (int c = 0; c < ncopy; c++) {
@@ -839,7 +846,7 @@ int HardsphereDomainWindow::compare_histories(double dt)
     const double *theirs = &hrecv[k + 2];
     const int ntheirs = (int) hrecv[k + 1];
     const int nmine = start[c + 1] - start[c];
-    const double limit = tstar[c] + ttol;
+    const double limit = tstar[c];
     bool same = true;
     for (int a = 0; same; a++) {
       const bool more_a = a < nmine && history[evlist[start[c] + a]].t <= limit;
@@ -851,9 +858,7 @@ int HardsphereDomainWindow::compare_histories(double dt)
       }
       event_of(e, evlist[start[c] + a], mine);
       const double *t = &theirs[(size_t) a * NEV];
-      same = mine[1] == t[1] && std::fabs(mine[0] - t[0]) <= ttol;
-      for (int d = 0; d < 3 && same; d++)
-        same = std::fabs(mine[2 + d] - t[2 + d]) <= vtol && std::fabs(mine[5 + d] - t[5 + d]) <= wtol;
+      for (int k = 0; k < NEV && same; k++) same = mine[k] == t[k];
     }
     if (!same) conflicts++;
   }
@@ -861,7 +866,9 @@ int HardsphereDomainWindow::compare_histories(double dt)
 }
 
 // ------------------------------------------------ commit the owned atoms
-void HardsphereDomainWindow::commit(double t0, double dt)
+// their state at the window's end in LAMMPS's frame (see FarWrap::written), and their stored
+// states for the next window, wherever the atoms go
+void HardsphereDomainWindow::commit()
 {
   double *xa = nlocal > 0 ? atom->x[0] : nullptr, *va = nlocal > 0 ? atom->v[0] : nullptr;
   double *wa = nlocal > 0 ? atom->omega[0] : nullptr;
@@ -869,16 +876,21 @@ void HardsphereDomainWindow::commit(double t0, double dt)
   const hardsphere::FarWrap wrap(domain);
   for (int i = 0; i < nlocal; i++) {
     const int e = lslot[i];
-    double xe[3];
-    ed.state(e, dt, xe, va + 3 * i, wa + 3 * i);
+    double xe[3], off[3];
+    ed.state(e, T1, xe, va + 3 * i, wa + 3 * i);
+    double *xs = fix.xstate[i];
     int dimg[3] = {0, 0, 0};
-    for (int d = 0; d < dim; d++) wrap.apply(d, xe[d], dimg[d]);    // (nothing moves in z in 2d)
+    for (int d = 0; d < 3; d++) {
+      int o = (int) xs[FixHardsphereED::XS_OFF + d];
+      xa[3 * i + d] = wrap.written(d, xe[d], o);
+      dimg[d] = o - (int) xs[FixHardsphereED::XS_OFF + d];
+      off[d] = o;
+    }
     FixHardsphereED::shift_image(image[i], dimg);
-    xa[3 * i] = xe[0];
-    xa[3 * i + 1] = xe[1];
-    xa[3 * i + 2] = xe[2];
-    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(e).t_last, t0);
-    if (fix.atally) fix.store_tally(i, e, t0);
+    const int p = ed.last_partner(e);
+    fix.store_state(i, e, off, p < 0 ? 0.0 : (double) stag[p]);
+    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(e).t_last, fix.epoch_clock);
+    if (fix.atally) fix.store_tally(i, e);
   }
 }
 

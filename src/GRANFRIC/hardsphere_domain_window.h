@@ -49,30 +49,32 @@ class HardsphereDomainWindow : protected Pointers {
   granfric::EventDriven &ed;
 
   // ---- the window's stages, in order
+  bool new_epoch(double t0);
   void bound_reach(double dt);
   void make_regions();
-  void send_copies(double t0);
+  void send_copies();
   void find_copies();
   void order_by_id();
-  void load_core(double t0);
+  void load_core();
   void watch_events();
   bool advance(double t0, double dt);
   bool guard(double dt);
   void influence_times();
   void publish_histories();
-  int compare_histories(double dt);
-  void commit(double t0, double dt);
+  int compare_histories();
+  void commit();
   void sum_statistics();
 
   // ---- helpers of the stages
   bool can_keep(granfric::EDOptions &o);
-  void keep_core(double t0);
-  void fresh_core(granfric::EDOptions &o, double t0);
+  void keep_core();
+  void fresh_core(granfric::EDOptions &o);
   bool inside(const Region &R, const double *x, int *s) const;
   double gap_to(const double *x, int r) const;
   long tag_of(int a) const;
-  AtomRecord record_of(int a, double t0) const;
-  bool rounding_only(int sl, const AtomRecord &r) const;
+  AtomRecord record_of(int a) const;
+  void frame_of(int a, const AtomRecord &r, int *f) const;
+  int partner_slot(const AtomRecord &r) const;
   void event_of(int e, int m, double *out) const;
   long exchange(const std::vector<double> &send, std::vector<double> &recv);
   bool guard_atom(int i, double s2, double dt);
@@ -80,6 +82,8 @@ class HardsphereDomainWindow : protected Pointers {
   // ---- this window (set by the stages)
   int nlocal = 0, dim = 3, nghost = 0, ncopy = 0, nwatch = 0;
   double step = 0.0;             // the window's length
+  bool epoch_now = false;        // the window starts an epoch (atoms from LAMMPS)
+  double T0 = 0.0, T1 = 0.0;     // its start and end in epoch time
   long received = 0;             // doubles this rank received
   granfric::EDOptions base;      // the fix's core options
   double gmx[2] = {0, 0};        // the largest speed bound and radius over all ranks
@@ -96,7 +100,7 @@ class HardsphereDomainWindow : protected Pointers {
 
   // ---- kept from one window to the next
   bool valid = false;
-  double last_dt = 0.0;
+  bigint last_natoms = -1;
   double grid_lo[3] = {0, 0, 0}, grid_hi[3] = {0, 0, 0};    // the kept cell grid (open dims)
   bool grid_whole[3] = {false, false, false};
   granfric::IdMap slot_of_tag;                  // slot of each atom ID here

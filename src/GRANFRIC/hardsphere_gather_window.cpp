@@ -29,33 +29,37 @@ HardsphereGatherWindow::HardsphereGatherWindow(FixHardsphereED &f) :
 {
 }
 
-void HardsphereGatherWindow::run(double t0, double dt)
+// (redo: the window again after a domain window had a conflict; the atoms come from their
+// stored states, see FixHardsphereED::xstate)
+void HardsphereGatherWindow::run(double t0, double dt, bool redo)
 {
-  gather(t0);
+  // (the stored states hold from the second window of an epoch on)
+  const bool exact = redo && fix.epoch_step != update->ntimestep - 1;
+  gather(exact);
   order_by_id();
   for (int d = 0; d < 3; d++) wper[d] = domain->periodicity[d] ? domain->prd[d] : 0.0;
-  if (can_reuse()) {
-    ed.rebase(prev_dt);
-    ed.set_clock(t0);
+  const double T0 = fix.epoch_time(update->ntimestep - 1);
+  const bool epoch = !exact && (redo || fix.epoch_starts() || !can_reuse(T0));
+  if (epoch) fix.begin_epoch(t0);    // (again after a domain window began it: the same)
+  if (epoch || exact)
+    fresh_core(exact);
+  else
     fix.check_overlaps = false;
-  } else {
-    fresh_core(t0);
-  }
+  const double T1 = fix.epoch_time(update->ntimestep);
   schedule_kicks(t0, dt);
-  advance(t0, dt);
-  take_back(t0, dt);
-  prev_dt = dt;
+  advance(T1);
+  take_back(T1);
 }
 
 // atom k of the gathered system: on one rank the atom arrays are the system, read in place
-AtomRecord HardsphereGatherWindow::record(int k, double t0) const
+AtomRecord HardsphereGatherWindow::record(int k) const
 {
-  return comm->nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : fix.atom_record(k, t0);
+  return comm->nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : fix.atom_record(k, false);
 }
 
 // On several ranks every rank packs its atoms and gathers everybody's. On one rank the atom
 // arrays are the system: they are read in place (no copy).
-void HardsphereGatherWindow::gather(double t0)
+void HardsphereGatherWindow::gather(bool exact)
 {
   const int nlocal = atom->nlocal, nprocs = comm->nprocs;
   int total = nlocal * NPACK;
@@ -63,7 +67,7 @@ void HardsphereGatherWindow::gather(double t0)
     fix.displs.assign(1, 0);
   } else {
     sendbuf.resize((size_t) nlocal * NPACK);
-    for (int i = 0; i < nlocal; i++) fix.atom_record(i, t0).write(&sendbuf[(size_t) i * NPACK]);
+    for (int i = 0; i < nlocal; i++) fix.atom_record(i, exact).write(&sendbuf[(size_t) i * NPACK]);
     total = fix.allgather(sendbuf, recvbuf);
   }
   ntotal = total / NPACK;
@@ -101,17 +105,17 @@ void HardsphereGatherWindow::order_by_id()
 // since then: same atoms, and positions, velocities and spins bit for bit what this window
 // wrote (every rank sees the same gathered data, so all decide alike). What was written is
 // recomputed from the core, with the same arithmetic, rather than stored.
-bool HardsphereGatherWindow::can_reuse()
+bool HardsphereGatherWindow::can_reuse(double T0)
 {
   bool reuse = valid && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
       (int) offset.size() == noff * ntotal;
-  for (int s = 0; reuse && s < ntotal; s++) reuse = reusable(s);
+  for (int s = 0; reuse && s < ntotal; s++) reuse = reusable(s, T0);
   return reuse;
 }
 
 // does core particle s hold this window's atom (its position up to the periods LAMMPS wrapped,
 // which update its offsets)?
-bool HardsphereGatherWindow::reusable(int s)
+bool HardsphereGatherWindow::reusable(int s, double T0)
 {
   const int k = order[s];
   // this window's x, v, omega of the atom (in place on one rank)
@@ -123,28 +127,23 @@ bool HardsphereGatherWindow::reusable(int s)
     if (!ed.is_body(s, atom->radius[k], atom->rmass[k], atom->type[k])) return false;
   } else {
     const double *r = &recvbuf[(size_t) k * NPACK];
-    bx = r + AtomRecordAt::X;
+    bx = r + AtomRecordAt::XL;
     bv = r + AtomRecordAt::V;
     bw = r + AtomRecordAt::W;
     if (!ed.is_body(s, r[AtomRecordAt::RADIUS], r[AtomRecordAt::MASS], (int) r[AtomRecordAt::TYPE]))
       return false;
   }
   double w[9];
-  written_state(s, prev_dt, w);
+  written_state(s, T0, w);
   for (int d = 0; d < 3; d++)
     if (bv[d] != w[3 + d] || bw[d] != w[6 + d]) return false;
   // positions: what this window wrote, or that shifted by one period by Domain::pbc()
+  const hardsphere::FarWrap wrap(domain);
   for (int d = 0; d < 3; d++) {
-    const double b = bx[d];
-    if (b == w[d]) continue;
-    int8_t &off = offset[(size_t) s * noff + d];
-    if (!domain->periodicity[d] || d >= noff) return false;
-    if (b == w[d] + domain->prd[d] && off > -OFFSET_MAX)
-      off--;
-    else if (b == std::max(w[d] - domain->prd[d], domain->boxlo[d]) && off < OFFSET_MAX)
-      off++;
-    else
-      return false;    // (or the offset would leave its range: start afresh)
+    int8_t &stored = offset[(size_t) s * noff + d];
+    int off = d < noff ? stored : 0;
+    if (!wrap.holds(d, bx[d], w[d], off) || off < -OFFSET_MAX || off > OFFSET_MAX) return false;
+    if (d < noff) stored = (int8_t) off;
   }
   return true;
 }
@@ -159,22 +158,43 @@ void HardsphereGatherWindow::written_state(int s, double t, double *w) const
     if (off[d]) w[d] -= off[d] * wper[d];    // (not periodic: wper = 0 and off = 0)
 }
 
-// the core afresh from the gathered atoms, in the order of their IDs
-void HardsphereGatherWindow::fresh_core(double t0)
+// the core afresh from the gathered atoms, in the order of their IDs: at the start of an
+// epoch from LAMMPS's atoms, else from their stored states (exact), which it continues
+void HardsphereGatherWindow::fresh_core(bool exact)
 {
   fix.configure_core(fix.core_options());
   ed.resize(ntotal);
-  for (int s = 0; s < ntotal; s++) {
-    const AtomRecord r = record(order[s], t0);
-    r.to_particle(ed.particle(s));
-    ed.particle(s).t_last = r.tlast;
-  }
-  same_atoms = true;
-  ed.set_clock(t0);
-  fix.start_core(true);
-  fix.report_overlaps(false);
   noff = domain->dimension;
   offset.assign((size_t) ntotal * noff, 0);
+  keys.resize(ntotal);
+  for (int s = 0; s < ntotal; s++) {
+    const AtomRecord r = record(order[s]);
+    r.to_particle(ed.particle(s));
+    ed.particle(s).t_last = r.tlast;
+    for (int d = 0; d < noff; d++) offset[(size_t) s * noff + d] = (int8_t) r.off[d];
+    keys[s] = (long) otags[s];
+  }
+  for (int s = 0; exact && s < ntotal; s++) {
+    // (the last partner by its ID: otags is sorted)
+    const AtomRecord r = record(order[s]);
+    const auto at = std::lower_bound(otags.begin(), otags.end(), (tagint) r.partner);
+    const int p = r.partner > 0.0 && at != otags.end() && *at == (tagint) r.partner ? (int) (at - otags.begin()) : -1;
+    const int poff[3] = {(int) r.poff[0], (int) r.poff[1], (int) r.poff[2]};
+    ed.set_last_partner(s, p, poff);
+  }
+  same_atoms = true;
+  ed.set_accounting({keys.data(), nullptr});
+  ed.set_clock(fix.epoch_clock);
+  if (exact) {
+    try {
+      ed.start_at(fix.epoch_time(update->ntimestep - 1));
+    } catch (std::exception &e) {
+      fix.core_failed(e, true);
+    }
+  } else {
+    fix.start_core(true);
+    fix.report_overlaps(false);
+  }
   fix.totals[FixHardsphereED::QUEUE_REBUILDS] += 1.0;
   fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) ntotal;
 }
@@ -193,14 +213,14 @@ void HardsphereGatherWindow::schedule_kicks(double t0, double dt)
 }
 
 // the window itself; a core that fails stops the run with what went wrong
-void HardsphereGatherWindow::advance(double t0, double dt)
+void HardsphereGatherWindow::advance(double T1)
 {
-  ed.set_accounting(granfric::EDAccounting());
+  ed.set_accounting({keys.data(), nullptr});    // (keys: the atom IDs)
   ed.record_events(nullptr);
   fix.clog.clear();
   ed.record_collisions(fix.want_rows ? &fix.clog : nullptr);
   try {
-    fix.last = ed.advance_to(dt);
+    fix.last = ed.advance_to(T1);
   } catch (granfric::EventCapError &e) {
     valid = false;
     if (e.kind == granfric::EventCapError::CROSSINGS)
@@ -216,7 +236,7 @@ void HardsphereGatherWindow::advance(double t0, double dt)
                "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
                "last one with atom {} at time {}: {}",
                (tagint) otags[e.i], e.n, update->ntimestep, fix.maxevents, (tagint) otags[e.j],
-               t0 + e.t,
+               fix.epoch_clock + e.t,
                creating ? "a collision law here can create energy (hardsphere/jz with kappa_d > "
                           "kappa_s), which can run away; use kappa_d <= kappa_s, or raise "
                           "maxevents if the energy stays bounded"
@@ -226,14 +246,15 @@ void HardsphereGatherWindow::advance(double t0, double dt)
   }
   // (every rank ran every collision: rank 0 keeps the rows)
   if (comm->me != 0) fix.clog.clear();
-  fix.keep_rows(t0, otags, cmask);
+  fix.keep_rows(otags, cmask);
 }
 
 // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the
 // periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
 // atom more than half a box outside (a step longer than a box crossing) is wrapped here and its
-// image flags follow. The same arithmetic on every rank, and as written_state's.
-void HardsphereGatherWindow::take_back(double t0, double dt)
+// image flags follow. The same arithmetic on every rank, and as written_state's. For windows
+// on several ranks each atom keeps its stored state (FixHardsphereED::xstate).
+void HardsphereGatherWindow::take_back(double T1)
 {
   const int nlocal = atom->nlocal;
   const hardsphere::FarWrap wrap(domain);
@@ -243,28 +264,30 @@ void HardsphereGatherWindow::take_back(double t0, double dt)
     int8_t *stored = &offset[(size_t) s * noff];
     int dimg[3] = {0, 0, 0};
     double w[9];
-    ed.state(s, dt, w, w + 3, w + 6);
+    ed.state(s, T1, w, w + 3, w + 6);
     for (int d = 0; d < noff; d++) {
       int off = stored[d];
-      double y = off ? w[d] - off * wper[d] : w[d];
-      dimg[d] = wrap.periods(d, y);
-      if (dimg[d]) {
-        off += dimg[d];
-        if (off < -OFFSET_MAX || off > OFFSET_MAX) offsets_full = true;
-        stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off));
-        y = off ? w[d] - off * wper[d] : w[d];
-      }
-      w[d] = y;
+      w[d] = wrap.written(d, w[d], off);
+      dimg[d] = off - stored[d];
+      if (off < -OFFSET_MAX || off > OFFSET_MAX) offsets_full = true;
+      stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off));
     }
     if (i < 0 || i >= nlocal) continue;
-    if (fix.atally) fix.store_tally(i, s, t0);
+    if (fix.atally) fix.store_tally(i, s);
     FixHardsphereED::shift_image(atom->image[i], dimg);
     memcpy(atom->x[i], w, 3 * sizeof(double));
     memcpy(atom->v[i], w + 3, 3 * sizeof(double));
     memcpy(atom->omega[i], w + 6, 3 * sizeof(double));
-    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(s).t_last, t0);
+    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(s).t_last, fix.epoch_clock);
+    if (fix.xstate) {
+      const double off[3] = {(double) (noff > 0 ? stored[0] : 0), (double) (noff > 1 ? stored[1] : 0),
+                             (double) (noff > 2 ? stored[2] : 0)};
+      const int p = ed.last_partner(s);
+      fix.store_state(i, s, off, p < 0 ? 0.0 : (double) otags[p]);
+    }
   }
   valid = !offsets_full;
+  if (offsets_full) fix.epoch_due = true;
 }
 
 double HardsphereGatherWindow::memory_usage() const

@@ -29,8 +29,8 @@ class FixHardsphereED;
 class HardsphereGatherWindow : protected Pointers {
  public:
   explicit HardsphereGatherWindow(FixHardsphereED &fix);
-  // one window [t0, t0 + dt) of the whole system
-  void run(double t0, double dt);
+  // one window [t0, t0 + dt) of the whole system (redo: after a domain window's conflict)
+  void run(double t0, double dt, bool redo);
   // the core no longer holds what the last window left (something else used or changed it)
   void invalidate() { valid = false; }
   bool kept() const { return valid; }
@@ -43,17 +43,17 @@ class HardsphereGatherWindow : protected Pointers {
   granfric::EventDriven &ed;
 
   // ---- the window's stages, in order
-  void gather(double t0);
+  void gather(bool exact);
   void order_by_id();
-  bool can_reuse();
-  void fresh_core(double t0);
+  bool can_reuse(double T0);
+  void fresh_core(bool exact);
   void schedule_kicks(double t0, double dt);
-  void advance(double t0, double dt);
-  void take_back(double t0, double dt);
+  void advance(double T1);
+  void take_back(double T1);
 
   // ---- helpers of the stages
-  AtomRecord record(int k, double t0) const;    // atom k of the gathered system
-  bool reusable(int s);
+  AtomRecord record(int k) const;    // atom k of the gathered system
+  bool reusable(int s, double T0);
   void written_state(int s, double t, double *w) const;
 
   int ntotal = 0;                 // atoms in the system
@@ -61,7 +61,7 @@ class HardsphereGatherWindow : protected Pointers {
 
   // ---- kept from one window to the next
   bool valid = false;             // the core continues the last window
-  double prev_dt = 0.0;
+  std::vector<long> keys;         // the core particles' atom IDs (EDAccounting::key)
   std::vector<int> order;         // index in recvbuf (or the atom arrays) by ID
   std::vector<tagint> otags;      // the IDs in that order (= the core's order)
   bool same_atoms = false;        // otags unchanged since the core's last start

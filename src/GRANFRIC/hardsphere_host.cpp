@@ -53,6 +53,7 @@ namespace hardsphere {
       hi[d] = p ? domain->boxhi[d] + 0.5 * domain->prd[d] : inf;
       boxlo[d] = domain->boxlo[d];
       L[d] = domain->prd[d];
+      periodic[d] = p;
     }
   }
 

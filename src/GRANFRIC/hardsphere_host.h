@@ -9,6 +9,7 @@
 
 #include "lmptype.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -50,9 +51,40 @@ namespace hardsphere {
       k = periods(d, y);
       if (k) y -= k * L[d];
     }
+    // The core keeps positions unwrapped (its frame); LAMMPS's lie off periods lower. What a
+    // window writes for core coordinate xc of dimension d: xc - off L, and a far one wrapped
+    // further (off follows: the periods taken off are off after the call less off before)
+    double written(int d, double xc, int &off) const
+    {
+      if (!periodic[d]) return xc;
+      double y = off ? xc - off * L[d] : xc;
+      const int k = periods(d, y);
+      if (k) {
+        off += k;
+        y = off ? xc - off * L[d] : xc;
+      }
+      return y;
+    }
+    // does LAMMPS's coordinate b hold what a window wrote (w), or that wrapped by one period
+    // as LAMMPS wraps atoms into the box (off follows)?
+    bool holds(int d, double b, double w, int &off) const
+    {
+      if (b == w) return true;
+      if (!periodic[d]) return false;
+      if (b == w + L[d]) {
+        off--;
+        return true;
+      }
+      if (b == std::max(w - L[d], boxlo[d])) {
+        off++;
+        return true;
+      }
+      return false;
+    }
 
    private:
     double lo[3], hi[3], boxlo[3], L[3];
+    bool periodic[3];
   };
 
 }    // namespace hardsphere

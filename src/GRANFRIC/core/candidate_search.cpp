@@ -39,19 +39,17 @@ void EventDriven::scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3
   }
 }
 
-// one candidate j of i at the image shift o (j's position + o L): its contact time, kept as
-// i's collision candidate when it is the earliest so far (i's state xi, vi now, its radius pa)
+// The contact time of i and j at the image shift o (j's position + o P), canonical: from both
+// stored states at tr = max(t_i, t_j) (the arithmetic of pos() and vel()), whoever predicts the
+// pair and whenever; not before now. Usually i is the later one (it has just collided): its
+// stored state is then its state at tr. Seen from j (shift -o) it is the same number: the
+// differences change sign exactly.
 template <int DIM, bool GRAV>
-inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, const Vec3 &xi,
-                                                              const Vec3 &vi, double pa, int j,
-                                                              int o0, int o1, int o2)
+inline __attribute__((always_inline)) double EventDriven::pair_time(int i, int j, int o0, int o1,
+                                                                    int o2) const
 {
   const Hot &q = H[j], &p = H[i];
   const Vec3 g = opt.gravity;
-  (void) xi, (void) vi;
-  // Canonical: from both stored states at tr = max(t_i, t_j), whoever predicts the pair and
-  // whenever (the arithmetic of pos() and vel()). Usually i is the later one (it has just
-  // collided): its stored state is then its state at tr.
   double tr, a0, a1, a2, u0, u1, u2;    // i at tr
   if (q.t <= p.t) {
     tr = p.t;
@@ -80,20 +78,29 @@ inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, c
   }
   double r0 = a0 - b0, r1 = a1 - b1, r2 = a2 - b2;
   if (o0 | o1 | o2) {
-    r0 -= o0 * L.x;
-    r1 -= o1 * L.y;
-    if (DIM == 3) r2 -= o2 * L.z;
+    r0 -= o0 * P.x;
+    r1 -= o1 * P.y;
+    if (DIM == 3) r2 -= o2 * P.z;
   }
-  double t = tr + pair_contact_time<DIM>(r0, r1, r2, u0 - w0, u1 - w1, DIM == 3 ? u2 - w2 : 0.0,
-                                         pa + q.a);
-  if (t < now) t = now;
+  const double t = tr + pair_contact_time<DIM>(r0, r1, r2, u0 - w0, u1 - w1,
+                                               DIM == 3 ? u2 - w2 : 0.0, p.a + q.a);
+  return t < now ? now : t;
+}
+
+// one candidate j of i at the image shift o (j's position + o P): its contact time, kept as
+// i's collision candidate when it is the earliest so far (i's state xi, vi now, its radius pa)
+template <int DIM, bool GRAV>
+inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, const Vec3 &xi,
+                                                              const Vec3 &vi, double pa, int j,
+                                                              int o0, int o1, int o2)
+{
+  (void) xi, (void) vi, (void) pa;
+  const double t = pair_time<DIM, GRAV>(i, j, o0, o1, o2);
   if (t < s.ct) {
     // two particles whose last collisions were with each other (same periodic image)
     // separate in free flight: relative motion is a straight line, they are no candidates
     // (tested only here, for a would-be candidate: the same outcome as skipping them)
-    if (C[i].last_partner == j && C[j].last_partner == i && o0 == s.last_off[0] &&
-        o1 == s.last_off[1] && o2 == s.last_off[2])
-      return;
+    if (separating(i, j, o0, o1, o2)) return;
     s.ct = t;
     s.cpartner = j;
     s.ccount = C[j].ncoll;
@@ -227,8 +234,8 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
             if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
             if (!counted(ki <= kj ? i : j)) continue;
             const int *pk = img[i].k, *qk = img[j].k;
-            const Vec3 shift((pk[0] + k[0] - qk[0]) * L.x, (pk[1] + k[1] - qk[1]) * L.y,
-                             (pk[2] + k[2] - qk[2]) * L.z);
+            const Vec3 shift((pk[0] + k[0] - qk[0]) * P.x, (pk[1] + k[1] - qk[1]) * P.y,
+                             (pk[2] + k[2] - qk[2]) * P.z);
             const double dist = norm(xi - pos(j, now) - shift), sigma = p.a + q.a;
             if (dist < sigma * (1.0 - tol)) {
               count++;
@@ -249,15 +256,19 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
 // computed once and offered to both partners (the same time: both see one number). With fewer
 // than three cells in a dimension a neighbour cell can be reached at two image shifts, and every
 // particle scans its neighbourhood itself, as predict() does.
-// the contact time of i and j seen from i at the image shift o (j's position + o L), offered to
-// both as their collision candidate; every particle is at time now (its x and v are current)
+// the contact time of i and j seen from i at the image shift o (j's position + o P), offered to
+// both as their collision candidate (the canonical time of pair_time(): the one number offer()
+// gives either of them)
 void EventDriven::offer_both(int i, int j, int o0, int o1, int o2)
 {
-  const Hot &p = H[i], &q = H[j];
-  Vec3 r = p.x - q.x;
-  if (o0 | o1 | o2) r -= Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
-  const double t = now + pair_contact_time(r, p.v - q.v, p.a + q.a);
+  double t;
+  if (opt.dim == 2)
+    t = has_gravity ? pair_time<2, true>(i, j, o0, o1, o2) : pair_time<2, false>(i, j, o0, o1, o2);
+  else
+    t = has_gravity ? pair_time<3, true>(i, j, o0, o1, o2) : pair_time<3, false>(i, j, o0, o1, o2);
   Sched &si = S[i], &sj = S[j];
+  if (!(t < si.ct) && !(t < sj.ct)) return;
+  if (separating(i, j, o0, o1, o2)) return;
   if (t < si.ct) {
     si.ct = t;
     si.cpartner = j;

@@ -70,6 +70,11 @@ void EventDriven::renumber(const std::vector<int> &order)
       for (int k = 0; k < n; k++) W[k] = TL[order[k]];
       TL.swap(W);
     }
+    if (!FR.empty()) {
+      big_vector<Frame> W(n);
+      for (int k = 0; k < n; k++) W[k] = FR[order[k]];
+      FR.swap(W);
+    }
     if (lists) {
       big_vector<Vec3> X(n);
       big_vector<Entry> B((size_t) n * LCAP);
@@ -166,7 +171,7 @@ void EventDriven::setup_cells()
 
 void EventDriven::place(int i)
 {
-  const Vec3 &x = lists ? XN[i] : H[i].x;    // (with lists: the list centre)
+  const Vec3 x = lists ? XN[i] : pos(i, now);    // (with lists: the list centre)
   Sched &s = S[i];
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -175,8 +180,10 @@ void EventDriven::place(int i)
       continue;
     }
     int c, k;
-    locate(d, x[d], c, k);
-    img[i].k[d] = k;
+    // (a frame shift f: the grid sees the particle at x + f P, its image is -f)
+    const int f = framed ? FR[i].f[d] : 0;
+    locate(d, f ? x[d] + f * P[d] : x[d], c, k);
+    img[i].k[d] = f ? -f : k;
     s.c[d] = (int16_t) c;
   }
 }
@@ -236,6 +243,12 @@ void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
   auto offer = [&](double t, int d, int dir) {
     if (t < xt) xt = t, xdim = d, xdir = dir;
   };
+  // the lower boundary of cell c + u in the particle's frame (k: its image, in a non-periodic
+  // dimension minus its frame shift)
+  auto bound = [&](int d, double u) {
+    return opt.periodic[d] ? opt.lo[d] + ((double) p.c[d] + u + (double) k[d] * nc[d]) * cw[d]
+                           : opt.lo[d] + ((double) p.c[d] + u) * cw[d] + (double) k[d] * P[d];
+  };
   for (int d = 0; d < DIM; d++) {
     const double v = vi[d];
     const bool top = !opt.periodic[d] && p.c[d] == nc[d] - 1;    // no boundary beyond an edge cell
@@ -244,17 +257,14 @@ void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
       // straight flight: only the boundary ahead can be reached
       if (v > 0.0) {
         if (top) continue;
-        const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
-        offer(now + std::max(0.0, (bhi - xi[d]) / v), d, 1);
+        offer(now + std::max(0.0, (bound(d, 1.0) - xi[d]) / v), d, 1);
       } else if (v < 0.0) {
         if (bottom) continue;
-        const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
-        offer(now + std::max(0.0, (blo - xi[d]) / v), d, -1);
+        offer(now + std::max(0.0, (bound(d, 0.0) - xi[d]) / v), d, -1);
       }
       continue;
     }
-    const double blo = opt.lo[d] + ((double) p.c[d] + (double) k[d] * nc[d]) * cw[d];
-    const double bhi = opt.lo[d] + ((double) p.c[d] + 1.0 + (double) k[d] * nc[d]) * cw[d];
+    const double blo = bound(d, 0.0), bhi = bound(d, 1.0);
     offer(top ? NEVER : now + crossing_time(xi[d], v, opt.gravity[d], bhi, +1), d, 1);
     offer(bottom ? NEVER : now + crossing_time(xi[d], v, opt.gravity[d], blo, -1), d, -1);
   }

@@ -36,6 +36,16 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   laws = table;
   qt = shape_table(o, nt);
   L = Vec3(o.hi[0] - o.lo[0], o.hi[1] - o.lo[1], o.hi[2] - o.lo[2]);
+  framed = false;
+  for (int d = 0; d < 3; d++) {
+    if (!(o.period[d] >= 0.0)) throw std::invalid_argument("a period must be >= 0");
+    if (o.period[d] > 0.0 && !o.open[d])
+      throw std::invalid_argument("a period is for open dimensions only");
+    P[d] = o.periodic[d] ? L[d] : o.period[d];
+    framed = framed || (o.period[d] > 0.0 && d < o.dim);
+  }
+  if (!framed) FR.clear();
+  else if (FR.size() != H.size()) FR.assign(H.size(), Frame{{0, 0, 0}});
   if (o.dim == 2 && o.gravity.z != 0.0)
     throw std::invalid_argument("gravity must lie in the x-y plane in 2d");
   bool walled[3] = {false, false, false};
@@ -71,7 +81,8 @@ static bool same_laws(const std::vector<LawParams> &a, const std::vector<LawPara
   return true;
 }
 
-bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<LawParams> &table) const
+bool EventDriven::same_configuration(const EDOptions &o, int nt, const std::vector<LawParams> &table,
+                                     const EDOptions &opt, int ntypes, const std::vector<LawParams> &laws)
 {
   if (o.dim != opt.dim || nt != ntypes || !same_laws(table, laws) ||
       o.gravity.x != opt.gravity.x || o.gravity.y != opt.gravity.y || o.gravity.z != opt.gravity.z ||
@@ -79,11 +90,11 @@ bool EventDriven::configured_as(const EDOptions &o, int nt, const std::vector<La
       o.cell_width != opt.cell_width || o.neighbours != opt.neighbours ||
       o.list_skin != opt.list_skin ||
       o.walls.size() != opt.walls.size() ||
-      shape_table(o, nt) != qt)
+      shape_table(o, nt) != shape_table(opt, ntypes))
     return false;
   for (int d = 0; d < 3; d++)
     if (o.lo[d] != opt.lo[d] || o.hi[d] != opt.hi[d] || o.periodic[d] != opt.periodic[d] ||
-        o.open[d] != opt.open[d])
+        o.open[d] != opt.open[d] || o.period[d] != opt.period[d])
       return false;
   for (size_t k = 0; k < o.walls.size(); k++) {
     const EDWall &a = o.walls[k], &b = opt.walls[k];
@@ -104,6 +115,7 @@ void EventDriven::resize(int n)
   S.assign(n, Sched());
   WT.clear();
   img.assign(n, Image{{0, 0, 0}, -1});
+  if (framed) FR.assign(n, Frame{{0, 0, 0}});
   lists = false;
   XN.clear();
   NB.clear();
@@ -141,7 +153,7 @@ void EventDriven::predict(int i, bool pairs)
     predict_rebuild(i, xi, vi);
   else
     predict_crossing(i, xi, vi);
-  predict_wall(i, xi, vi);
+  predict_wall(i);
   p.ct = NEVER;
   p.cpartner = -1;
   if (!pairs) return;
@@ -151,18 +163,24 @@ void EventDriven::predict(int i, bool pairs)
     scan_full(i, xi, vi);
 }
 
-void EventDriven::collide_pair(int i)
+void EventDriven::collide_pair(int e)
 {
+  Sched &se = S[e];
+  const double t = se.ct;
+  // the pair in a canonical order (i: the smaller key), whichever of the two had the event:
+  // the collision law's arithmetic is not symmetric in the last bits
+  const bool swap = key(se.cpartner) < key(e);
+  const int i = swap ? se.cpartner : e, j = swap ? e : se.cpartner;
+  const int sg = swap ? -1 : 1;
+  const int off[3] = {sg * se.coff[0], sg * se.coff[1], sg * se.coff[2]};    // (j's image)
   Hot &hp = H[i];
   Cold &p = C[i];
   Sched &s = S[i];
-  const int j = s.cpartner;
   Hot &hq = H[j];
   Cold &q = C[j];
-  const double t = s.ct;
   advance(i, t);
   advance(j, t);
-  const Vec3 r = hp.x - hq.x - Vec3(s.coff[0] * L.x, s.coff[1] * L.y, s.coff[2] * L.z);
+  const Vec3 r = hp.x - hq.x - Vec3(off[0] * P.x, off[1] * P.y, off[2] * P.z);
   const Vec3 n = (1.0 / norm(r)) * r;
 
   LawParams law = laws[s.type * (ntypes + 1) + S[j].type];
@@ -184,8 +202,8 @@ void EventDriven::collide_pair(int i)
   p.last_partner = j;
   q.last_partner = i;
   for (int d = 0; d < 3; d++) {
-    s.last_off[d] = s.coff[d];
-    S[j].last_off[d] = -s.coff[d];
+    s.last_off[d] = off[d];
+    S[j].last_off[d] = -off[d];
   }
   const long ni = ++s.ncollisions, nj = ++S[j].ncollisions;
   record_pair(i, j, t, r, n, b1, b2, c, tc_elastic, ni, nj);
@@ -206,13 +224,27 @@ void EventDriven::collide_pair(int i)
 void EventDriven::start()
 {
   now = 0.0;
+  for (auto &h : H) h.t = 0.0;
+  for (auto &c : C) c.last_partner = -1;
+  start_common();
+}
+
+void EventDriven::start_at(double t)
+{
+  now = t;
+  for (size_t i = 0; i < H.size(); i++)
+    if (!S[i].gone && !(H[i].t <= t))
+      throw std::invalid_argument("start_at: a particle's stored time lies after the start");
+  start_common();
+}
+
+void EventDriven::start_common()
+{
   const int n = (int) H.size();
   for (auto &s : S) s.ncollisions = 0;
   WT.assign(opt.walls.empty() ? 0 : n, NEVER);
   for (int i = 0; i < n; i++) {
-    H[i].t = 0.0;
     C[i].ncoll = 0;
-    C[i].last_partner = -1;
     if (opt.dim == 2) {
       H[i].v.z = 0.0;
       C[i].w.x = C[i].w.y = 0.0;
@@ -233,6 +265,26 @@ void EventDriven::start()
   dirty.clear();
 }
 
+void EventDriven::set_last_partner(int e, int p, const int off[3])
+{
+  const int i = loc[e];
+  C[i].last_partner = p < 0 ? -1 : loc[p];
+  for (int d = 0; d < 3; d++) S[i].last_off[d] = p < 0 ? 0 : off[d];
+}
+
+void EventDriven::set_frame(int e, const int f[3])
+{
+  if (!framed) {
+    if (f[0] | f[1] | f[2]) throw std::invalid_argument("set_frame: no open dimension has a period");
+    return;
+  }
+  for (int d = 0; d < 3; d++)
+    if (f[d] && !(opt.period[d] > 0.0 && d < opt.dim))
+      throw std::invalid_argument("set_frame: a frame shift in a dimension without a period");
+  Frame &F = FR[loc[e]];
+  for (int d = 0; d < 3; d++) F.f[d] = f[d];
+}
+
 void EventDriven::remove(int e)
 {
   const int i = loc[e];
@@ -250,7 +302,7 @@ void EventDriven::remove(int e)
   C[i].last_partner = -1;
 }
 
-void EventDriven::changed(int e)
+void EventDriven::changed(int e, bool own_time)
 {
   const int i = loc[e];
   Hot &p = H[i];
@@ -264,14 +316,15 @@ void EventDriven::changed(int e)
     cell_remove(i);
   }
   s.gone = 0;
-  p.t = now;
+  if (!own_time) p.t = now;
+  if (!(p.t <= now)) throw std::invalid_argument("changed: a particle's stored time lies after now");
   c.ncoll++;    // every prediction that involved it is stale
   c.last_partner = -1;
   if (opt.dim == 2) {
     p.v.z = 0.0;
     c.w.x = c.w.y = 0.0;
   }
-  if (lists) XN[i] = p.x;
+  if (lists) XN[i] = pos(i, now);
   place(i);
   cell_insert(i);
   no_events(i);

@@ -106,6 +106,11 @@ struct EDOptions {
   // a non-periodic dimension needs a wall unless it is open: particles may leave [lo, hi]
   // (they stay in the edge cells), as in a piece of a larger system
   bool open[3] = {false, false, false};
+  // > 0 in an open dimension: the period of that larger system. A particle's stored position
+  // may then lie whole periods away from where [lo, hi] sees it (its frame, set_frame()): pair
+  // distances take the periods off as integers, as periodic images do, so a particle keeps
+  // the stored position its owner computed
+  double period[3] = {0, 0, 0};
   Vec3 gravity;
   double tc = 0.0;                      // TC model duration (0: off)
   long max_collisions = 1000000;        // per particle per window (inelastic-collapse guard)
@@ -224,7 +229,12 @@ class EventDriven {
   void configure(const EDOptions &opt, int ntypes, const std::vector<LawParams> &laws);
   const EDOptions &options() const { return opt; }
   // true if configure(o, ntypes, laws) would change nothing (a kept event queue stays valid)
-  bool configured_as(const EDOptions &o, int ntypes, const std::vector<LawParams> &laws) const;
+  bool configured_as(const EDOptions &o, int ntypes, const std::vector<LawParams> &laws) const
+  {
+    return same_configuration(o, ntypes, laws, opt, this->ntypes, this->laws);
+  }
+  static bool same_configuration(const EDOptions &a, int nta, const std::vector<LawParams> &la,
+                                 const EDOptions &b, int ntb, const std::vector<LawParams> &lb);
 
   // particles by external index 0..n-1 (the order they were given in); internally they are
   // kept in cell order for memory locality
@@ -242,8 +252,14 @@ class EventDriven {
   //                    read them with position() / velocity())
   //   rebase(dt)       subtract dt from every time, so the next window starts at 0 again
   // A window sequence start, advance_to(dt), rebase(dt), advance_to(dt), ... follows the same
-  // trajectory as one long window, up to the rounding of the time shifts.
+  // trajectory as one long window, up to the rounding of the time shifts; without rebase()
+  // (windows ending at dt, 2 dt, ...: one time origin) it is that trajectory bit for bit.
+  //   start_at(t)      start() at window time t from particles whose stored states (x, v at
+  //                    their own times particle(e).t <= t, w, t_last, last partners) are kept
+  //                    as they are: the same predictions, bit for bit, as the core that
+  //                    computed those states holds (a new cell grid, the same trajectory)
   void start();
+  void start_at(double t);
   EDStats advance_to(double t_end);
   void rebase(double dt);
 
@@ -266,8 +282,27 @@ class EventDriven {
   //                Only if the new position lies in the particle's cell (else nothing changes
   //                and it returns false: use changed()). The caller bounds the difference.
   //                With neighbour lists it always returns false.
+  //   changed(e, true)    the same, but x and v are given at their own time particle(e).t
+  //                (<= now), as another core stored them, not re-rounded to now
+  // Between changed() (which forgets it) and the next advance_to(), or before start_at():
+  //   set_last_partner(e, p, off)   e's last collision was with p (-1: none) at the image
+  //                shift off (p's stored position + off * period next to e's), as the core that
+  //                computed e's state has it: two particles that last collided with each other
+  //                are no candidates for each other (their contact right after the collision
+  //                is rounding)
+  //   set_frame(e, f)    particle e's stored position lies f[d] periods (EDOptions::period)
+  //                below where this core's cell grid sees it, in each open dimension with a
+  //                period (0 elsewhere); before start_at() or changed()
   void remove(int e);
-  void changed(int e);
+  void changed(int e, bool own_time = false);
+  void set_last_partner(int e, int p, const int off[3]);
+  int last_partner(int e) const
+  {
+    const int j = C[loc[e]].last_partner;
+    return j < 0 ? -1 : ext[j];
+  }
+  const int *last_offset(int e) const { return S[loc[e]].last_off; }
+  void set_frame(int e, const int f[3]);
   bool nudge(int e, const double *x, const double *v, const double *w);
   bool present(int e) const { return !S[loc[e]].gone; }
   // the largest radius the cell grid of the last start() admits
@@ -347,6 +382,16 @@ class EventDriven {
   // absolute time of window time 0 (the phase of vibrating walls); rebase() advances it
   void set_clock(double t) { clock = t; }
   double get_clock() const { return clock; }
+
+  // a free flight as the core computes it (pos(), vel()): position and velocity x, v brought
+  // forward by dt under gravity g (grav: g is not zero), the same bits
+  static Vec3 flight_x(const Vec3 &x, const Vec3 &v, double dt, const Vec3 &g, bool grav)
+  {
+    return grav ? x + dt * v + (0.5 * dt * dt) * g : x + dt * v;
+  }
+  static Vec3 flight_v(const Vec3 &v, double dt, const Vec3 &g) { return v + dt * g; }
+  // the frame shift of particle e (set_frame), or null without frames
+  const int *frame(int e) const { return FR.empty() ? nullptr : FR[loc[e]].f; }
 
   // state of particle e (external index) at window time t (lazy update, not stored)
   Vec3 position(int e, double t) const { return pos(loc[e], t); }
@@ -433,7 +478,7 @@ class EventDriven {
     int cpartner = -1;        // collision candidate: partner,
     uint32_t ccount = 0;      //   partner's ncoll at prediction (stale when it changed),
     uint32_t ncollisions = 0; // collisions in this window (event cap)
-    int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * L
+    int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * P
     int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
     double ct = NEVER;        //   and time
     double xt = NEVER;        // next cell crossing: time
@@ -488,6 +533,12 @@ class EventDriven {
   std::vector<LawParams> laws;
   std::vector<double> qt = {0.4, 0.4};   // moment of inertia / (m a^2) by type (configure)
   Vec3 L;                                // box lengths
+  Vec3 P;                                // periods of image shifts (L if periodic, else period)
+  bool framed = false;                   // open dimensions with a period: frames (FR) in use
+  struct Frame {
+    int f[3];
+  };
+  big_vector<Frame> FR;                  // (set_frame; empty without frames)
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
   big_vector<int> head;                 // cell lists (singly linked through Image::next)
@@ -549,14 +600,12 @@ class EventDriven {
   Vec3 pos(int i, double t) const
   {
     const Hot &p = H[i];
-    const double dt = t - p.t;
-    if (!has_gravity) return p.x + dt * p.v;
-    return p.x + dt * p.v + (0.5 * dt * dt) * opt.gravity;
+    return flight_x(p.x, p.v, t - p.t, opt.gravity, has_gravity);
   }
   Vec3 vel(int i, double t) const
   {
     const Hot &p = H[i];
-    return p.v + (t - p.t) * opt.gravity;
+    return flight_v(p.v, t - p.t, opt.gravity);
   }
   void locate(int d, double xd, int &c, int &k) const;
   int cell_of(int i) const
@@ -598,15 +647,27 @@ class EventDriven {
   template <int DIM, bool GRAV>
   void offer(int i, Sched &s, const Vec3 &xi, const Vec3 &vi, double pa, int j, int o0, int o1,
              int o2);
+  // the canonical contact time of i and j at the image shift o (j's position + o P), >= now
+  template <int DIM, bool GRAV>
+  double pair_time(int i, int j, int o0, int o1, int o2) const;
+  // two particles that last collided with each other, at this image shift: no candidates
+  bool separating(int i, int j, int o0, int o1, int o2) const
+  {
+    const int *lo = S[i].last_off;
+    return C[i].last_partner == j && C[j].last_partner == i && o0 == lo[0] && o1 == lo[1] &&
+        o2 == lo[2];
+  }
+  void start_common();                   // start() and start_at() after the particles' times
   double schedule(int i);                // ekind from the candidates; returns the event time
-  void predict_wall(int i, const Vec3 &xi, const Vec3 &vi)
+  // (from the stored state alone, as pair contact times: the same number whenever predicted)
+  void predict_wall(int i)
   {
     S[i].wall = -1;
     if (WT.empty()) return;
     WT[i] = NEVER;
-    predict_walls(i, xi, vi);
+    predict_walls(i);
   }
-  void predict_walls(int i, const Vec3 &xi, const Vec3 &vi);    // (there are walls)
+  void predict_walls(int i);    // (there are walls)
   void collide_wall(int i);
   Collision thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t);
   void collide_pair(int i);

@@ -49,7 +49,7 @@ void EventDriven::setup_lists(double sigma)
   lrad2 = lrad * lrad;
   const size_t n = H.size();
   XN.resize(n);
-  for (size_t i = 0; i < n; i++) XN[i] = H[i].x;    // (at time now: start() or lists_to_cells)
+  for (size_t i = 0; i < n; i++) XN[i] = pos((int) i, now);    // (start() or lists_to_cells)
   NB.assign(n * LCAP, 0);
   NN.assign(n, 0);
 }
@@ -103,7 +103,7 @@ bool EventDriven::list_build(int i, bool higher_only)
           const int *qk = img[j].k;
           Vec3 xj = XN[j];
           const int o0 = pk[0] + k[0] - qk[0], o1 = pk[1] + k[1] - qk[1], o2 = pk[2] + k[2] - qk[2];
-          if (o0 | o1 | o2) xj += Vec3(o0 * L.x, o1 * L.y, o2 * L.z);
+          if (o0 | o1 | o2) xj += Vec3(o0 * P.x, o1 * P.y, o2 * P.z);
           if (norm2(c - xj) >= lrad2) continue;
           if (nf == LCAP || NN[j] == LCAP) return false;
           found[nf++] = make_entry(j, k[0], k[1], k[2]);

@@ -154,21 +154,25 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
   return NEVER;
 }
 
-void EventDriven::predict_walls(int i, const Vec3 &xi, const Vec3 &vi)
+// the first contact of particle i with each wall, from its stored state (x, v at its own
+// time): the same number whenever it is predicted; not before now
+void EventDriven::predict_walls(int i)
 {
   Sched &p = S[i];
-  const double a = H[i].a;
+  const Hot &h = H[i];
+  const double a = h.a, tb = h.t;
   for (int k = 0; k < (int) opt.walls.size(); k++) {
     const EDWall &w = opt.walls[k];
     const int d = w.dim;
+    const double x = h.x[d], v = h.v[d], g = opt.gravity[d];
     double t;
     if (w.vibrating() && w.sine)
-      t = sine_contact(w, clock, now, xi[d], vi[d], opt.gravity[d], a);
+      t = sine_contact(w, clock, tb, x, v, g, a);
     else if (w.vibrating())
-      t = vibrating_contact(w, clock, now, xi[d], vi[d], opt.gravity[d], a);
+      t = vibrating_contact(w, clock, tb, x, v, g, a);
     else
-      t = now + (w.side < 0 ? crossing_time(xi[d], vi[d], opt.gravity[d], w.pos + a, -1)
-                            : crossing_time(xi[d], vi[d], opt.gravity[d], w.pos - a, +1));
+      t = tb + (w.side < 0 ? crossing_time(x, v, g, w.pos + a, -1) : crossing_time(x, v, g, w.pos - a, +1));
+    if (t < now) t = now;
     if (t < WT[i]) {
       WT[i] = t;
       p.wall = (int8_t) k;
