@@ -767,7 +767,7 @@ void FixHardsphereED::write_restart(FILE *fp)
   update->update_time();
   if (comm->me == 0) {
     // layout: -RESTART_FORMAT, the number of totals, the totals, the shell factor of domain
-    // windows (which decides which copies a rank's window holds, and so its rounding)
+    // windows (which decides which copies a rank's window holds, and so its conflicts)
     const double head[2] = {-RESTART_FORMAT, (double) NVECTOR};
     int size = (NVECTOR + 3) * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);

@@ -34,8 +34,6 @@ class HardsphereGatherWindow : protected Pointers {
   // the core no longer holds what the last window left (something else used or changed it)
   void invalidate() { valid = false; }
   bool kept() const { return valid; }
-  // the atom ID of core particle s (after a window)
-  tagint tag_of_particle(long s) const { return otags[s]; }
   double memory_usage() const;
 
  private:

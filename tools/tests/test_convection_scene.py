@@ -16,9 +16,10 @@ def test_static_and_one_roll_states(tmp_path):
         states[kappa] = a
     assert states[0.005]["state"] == 0, states[0.005]["class"]
     assert states[0.03]["state"] == 1, states[0.03]["class"]
-    # one roll: |Psi1| well above the static bed's scatter
+    # one roll: |Psi1| well above the static bed's scatter (over 12 seeds of both runs the
+    # ratio lay between 4.2 and 7.9, mean 6.4)
     c = states[0.03]["class"]["clusters"][0]["centre"]
-    assert abs(c[0]) > 5 * states[0.005]["class"]["sigma"]
+    assert abs(c[0]) > 3 * states[0.005]["class"]["sigma"]
     # more loss per collision, lower bed
     assert states[0.03]["ycm"] < states[0.005]["ycm"]
     # the nearly elastic bed is a hot gas filling the box (mean height near half the box), not a

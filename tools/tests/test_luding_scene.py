@@ -83,8 +83,10 @@ def test_dilute_cooling_follows_kinetic_theory_within_3_percent(tmp_path_factory
 
 
 def test_elastic_rough_gas_equipartitions_and_conserves_energy(tmp_path):
-    d = luding.simulate(2, 1.0, 1.0, 0.05, 200.0, str(tmp_path / "log.eq"))
+    d = luding.simulate(2, 1.0, 1.0, 0.05, 1000.0, str(tmp_path / "log.eq"))
     E = d["c_T[1]"] + 0.5 * d["c_T[2]"]    # 2D: E/N = T_tr + T_rot/2
     assert np.max(np.abs(E / E[0] - 1)) < 1e-10
+    # the mean of R over 100 < t <= 1000 (about 200 collisions per disc) scatters by 0.005
+    # between seeds (by 0.016 over 100 < t <= 200): 0.02 is four of those
     late = d["Time"] > 100
-    assert abs(np.mean(d["c_T[3]"][late]) - 1.0) < 0.03
+    assert abs(np.mean(d["c_T[3]"][late]) - 1.0) < 0.02
