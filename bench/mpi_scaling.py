@@ -3,7 +3,7 @@
 """GRANFRIC benchmark: strong scaling of fix hardsphere/ed over MPI ranks (parallel domain),
 2D elastic discs at area fractions 0.05 and 0.3, N = 10^4 ... 10^6, steps of 1 ... 8 mean
 free times. For each case: CPU time per collision on 1 and 2 ranks (LAMMPS loop time), the
-speedup and parallel efficiency, the conflict rate (conflicting windows redone gathered, per
+speedup and parallel efficiency, the conflict rate (windows with a conflict, repaired, per
 window) and the communication per window (doubles received per rank). Figures measured in one
 run, not a test. Writes bench/results/mpi_scaling.csv and prints a markdown table.
 

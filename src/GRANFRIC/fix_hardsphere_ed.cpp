@@ -556,20 +556,12 @@ bool FixHardsphereED::state_holds(int i, double T0)
   return true;
 }
 
-// the kicks of every fix hardsphere/kick in [t0, t0 + dt) as global events of the core, applied
-// to core particles with IDs tags and masks; the momentum shift of each kick is summed over all
-// ranks (collective: every rank calls this with the same kicks)
-void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
-                                     const std::vector<int> &masks)
+// the kicks of every fix hardsphere/kick in [t0, t0 + dt) in time order; the momentum shift of
+// each kick is summed over all ranks (collective: every rank calls this for the same window)
+std::vector<PlannedKick> FixHardsphereED::plan_kicks(double t0, double dt)
 {
-  struct Kick {
-    double t;
-    int fix;
-    long k;
-    granfric::Vec3 dvcm;
-  };
   const int dim = domain->dimension;
-  std::vector<Kick> all;
+  std::vector<PlannedKick> all;
   // (epoch times: kicks of this window stay in [T0, T1) whatever the rounding)
   const double T0 = epoch_time(update->ntimestep - 1), T1 = epoch_time(update->ntimestep);
   const double last = std::nextafter(T1, -granfric::INF);
@@ -581,11 +573,21 @@ void FixHardsphereED::schedule_kicks(double t0, double dt, const std::vector<tag
       all.push_back({std::min(std::max(times[m] - epoch_clock, T0), last), f, index[m],
                      kicks[f]->momentum_shift(index[m], dim)});
   }
-  std::stable_sort(all.begin(), all.end(), [](const Kick &a, const Kick &b) { return a.t < b.t; });
-  std::vector<double> times(all.size());
-  for (size_t m = 0; m < all.size(); m++) times[m] = all[m].t;
-  ed.set_global_events(times, [this, all, dim, &tags, &masks](int g) {
-    kicks[all[g].fix]->apply(ed, tags, masks, all[g].k, dim, all[g].dvcm);
+  std::stable_sort(all.begin(), all.end(),
+                   [](const PlannedKick &a, const PlannedKick &b) { return a.t < b.t; });
+  return all;
+}
+
+// the planned kicks as global events of the core, applied to core particles with IDs tags and
+// masks (each rank alone)
+void FixHardsphereED::schedule_kicks(const std::vector<PlannedKick> &plan,
+                                     const std::vector<tagint> &tags, const std::vector<int> &masks)
+{
+  const int dim = domain->dimension;
+  std::vector<double> times(plan.size());
+  for (size_t m = 0; m < plan.size(); m++) times[m] = plan[m].t;
+  ed.set_global_events(times, [this, plan, dim, &tags, &masks](int g) {
+    kicks[plan[g].fix]->apply(ed, tags, masks, plan[g].k, dim, plan[g].dvcm);
   });
 }
 
@@ -635,13 +637,22 @@ void FixHardsphereED::initial_integrate(int vflag)
   if (parallel == DOMAIN && comm->nprocs > 1) {
     // the shell widens after a conflict (in dense gases collision chains outrun v_max) and
     // narrows slowly while windows pass; the same on every rank (conflicts are global)
-    if (dwin->run(t0, dt)) {
+    const bool done = dwin->run(t0, dt);
+    const int rounds = dwin->repair_rounds();
+    if (rounds > 0) {
+      int ranks = dwin->redone_here();
+      MPI_Allreduce(MPI_IN_PLACE, &ranks, 1, MPI_INT, MPI_SUM, world);
+      totals[REPAIR_ROUNDS] += rounds;
+      totals[RANKS_REDONE] += ranks;
+    }
+    if (done) {
       totals[DOMAIN_WINDOWS] += 1.0;
-      widen = MAX(1.0, widen * 0.99);
+      if (rounds > 0) totals[WINDOWS_REDONE] += 1.0;
+      widen = rounds > 0 ? MIN(64.0, 2.0 * widen) : MAX(1.0, widen * 0.99);
       finish_window(dt);
       return;
     }
-    totals[WINDOWS_REDONE] += 1.0;    // a conflict: the whole window again, gathered
+    totals[WINDOWS_REDONE] += 1.0;    // not repaired: the whole window again, gathered
     widen = MIN(64.0, 2.0 * widen);
     gwin->run(t0, dt, true);
     finish_window(dt);

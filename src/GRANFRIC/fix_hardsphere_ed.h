@@ -25,6 +25,7 @@ FixStyle(hardsphere/ed,FixHardsphereED);
 #include "atom_record.h"
 
 #include "event_driven.h"
+#include "hardsphere_window_parts.h"
 
 #include <functional>
 #include <string>
@@ -42,11 +43,13 @@ class FixHardsphereED : public Fix {
          TC_ELASTIC, ENERGY_CREATING, INJECTED, WALL_COLLISIONS, WALL_ENERGY,
          // parallel windows (parallel domain): windows done by domain, conflicts (ghosts whose
          // history disagreed with their owner's where it mattered, guard failures) in the last
-         // step and in total, windows redone gathered, doubles communicated in the last step
-         // and in total
+         // step and in total, windows repaired (or redone gathered), doubles communicated in the
+         // last step and in total
          DOMAIN_WINDOWS, STEP_CONFLICTS, CONFLICTS, WINDOWS_REDONE, STEP_COMM, COMM,
          // particles predicted afresh at the start of the last step (over all ranks)
-         STEP_PREDICTED, NVECTOR };
+         STEP_PREDICTED,
+         // repairs: rounds in total, and ranks' windows redone in them in total
+         REPAIR_ROUNDS, RANKS_REDONE, NVECTOR };
   enum { GATHER, DOMAIN };
   static constexpr double RESTART_FORMAT = 2.0;    // (see write_restart)
 
@@ -218,7 +221,10 @@ class FixHardsphereED : public Fix {
   // LAMMPS errors, of all ranks when collective (every rank runs the same core), else of one
   void start_core(bool collective);
   void core_failed(const std::exception &e, bool collective);
-  void schedule_kicks(double t0, double dt, const std::vector<tagint> &tags,
+  // the kicks of the window [t0, t0 + dt) (collective: every rank plans them alike), then
+  // given to the core whose slots hold the atoms tags
+  std::vector<PlannedKick> plan_kicks(double t0, double dt);
+  void schedule_kicks(const std::vector<PlannedKick> &plan, const std::vector<tagint> &tags,
                       const std::vector<int> &masks);
 
   // per-collision rows (request_collision_rows): the core's records of the window, and the rows

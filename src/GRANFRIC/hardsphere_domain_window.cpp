@@ -16,8 +16,10 @@
    If the earliest wrong event anywhere belonged to an owned atom, its partner was a ghost whose
    history up to that time differs from its owner's (which is right up to then) - detected; or a
    partner was missing - impossible after the guard. So when every rank passes, every owned
-   trajectory is the exact one. Otherwise the whole window is redone gathered (every rank runs
-   the whole system), which is exact by construction; the fix counts both.
+   trajectory is the exact one. Otherwise the ranks that found a conflict repair it with their
+   neighbours: they widen their shells and redo their windows, and all compare again (see
+   repair()); only a window that no repair fixes is redone gathered (every rank runs the whole
+   system), which is exact by construction. The fix counts all of them.
 ------------------------------------------------------------------------- */
 
 #include "hardsphere_domain_window.h"
@@ -101,26 +103,24 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   T0 = fix.epoch_time(update->ntimestep - 1);
   T1 = fix.epoch_time(update->ntimestep);
   bound_reach(dt);
-  make_regions();
+  factor = 1.0;
+  rounds = nredone = 0;
+  kick_from.resize(fix.kicks.size());
+  for (size_t f = 0; f < fix.kicks.size(); f++) kick_from[f] = fix.kicks[f]->kick_counter();
+  kplan.clear();
+  if (!fix.kicks.empty()) kplan = fix.plan_kicks(t0, dt);
+  make_regions(false);
   send_copies();
-  find_copies();
-  order_by_id();
-  load_core();
-  watch_events();
-  bool fail = !advance(t0, dt);
-  fail = fail || !guard(dt);
-  ed.track_fast(INF);
-  influence_times();
+  simulate(dt);
   publish_histories();
-  const int conflicts = fail ? 0 : compare_histories();
-  long local[3] = {conflicts, fail ? 1 : 0, received}, global[3];
-  MPI_Allreduce(local, global, 3, MPI_LONG, MPI_SUM, world);
+  long global[4];
+  bool ok = checked(global);
   double *totals = fix.totals;
-  totals[FixHardsphereED::STEP_COMM] += (double) global[2];
   totals[FixHardsphereED::STEP_CONFLICTS] = (double) (global[0] + global[1]);
   totals[FixHardsphereED::CONFLICTS] += totals[FixHardsphereED::STEP_CONFLICTS];
   // (check no keeps a conflicting window: a wrong result, to show what the check is for)
-  if (global[0] + global[1] > 0 && fix.check_windows) {
+  if (!ok && fix.check_windows) ok = repair(dt, global[2] > 0);
+  if (!ok && fix.check_windows) {
     for (size_t f = 0; f < fix.kicks.size(); f++) fix.kicks[f]->rewind(kick_from[f]);
     fix.gwin->invalidate();
     valid = false;
@@ -134,6 +134,74 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   fix.keep_rows(stag, smask);    // (the collisions this rank booked)
   sowned_prev.assign(sowned.begin(), sowned.end());
   return true;
+}
+
+// this rank's window with the copies it received: the core loaded, advanced, guarded; the
+// influence times of its copies
+void HardsphereDomainWindow::simulate(double dt)
+{
+  find_copies();
+  order_by_id();
+  load_core();
+  watch_events();
+  core_failed = !advance();
+  guard_failed = !core_failed && !guard(dt);
+  ed.track_fast(INF);
+  influence_times();
+}
+
+// did every rank pass its check? global: the conflicts, the ranks whose core or guard failed,
+// those whose guard failed, over all ranks, and the doubles received so far (the fix's count);
+// after conflicts each rank learns whether a copy of one of its atoms was among them
+bool HardsphereDomainWindow::checked(long *global)
+{
+  const bool fail = core_failed || guard_failed;
+  conflicts_here = 0;
+  blame.assign(comm->nprocs, 0);
+  if (!fail) conflicts_here = compare_histories();
+  long local[4] = {conflicts_here, fail ? 1 : 0, guard_failed ? 1 : 0, received};
+  MPI_Allreduce(local, global, 4, MPI_LONG, MPI_SUM, world);
+  fix.totals[FixHardsphereED::STEP_COMM] = (double) global[3];
+  blamed_here = false;
+  if (global[0] == 0) return global[1] == 0;
+  blamed.resize(comm->nprocs);
+  MPI_Alltoall(blame.data(), 1, MPI_INT, blamed.data(), 1, MPI_INT, world);
+  blamed_here = std::find(blamed.begin(), blamed.end(), 1) != blamed.end();
+  return false;
+}
+
+// ------------------------------------------------ repair a window with conflicts
+// Without gathering it: each rank that found a conflict (or whose core failed), and the owner
+// of each copy in conflict, widens its shell twofold and redoes its window, and so does every
+// rank whose atoms it then receives as
+// copies (only those publish the histories of the atoms it newly needs); all others keep
+// theirs and only compare again, against the histories now published. Rounds go on until no
+// rank finds a conflict. The check's argument holds for whatever mix of first and repeated
+// windows the ranks then hold: the earliest wrong event anywhere would be found by the rank
+// that owns it. A guard failure (an atom that went too far may have reached a rank without a
+// copy of it) makes every rank widen and redo. False: not repaired in MAX_ROUNDS rounds.
+bool HardsphereDomainWindow::repair(double dt, bool everyone)
+{
+  while (rounds < MAX_ROUNDS) {
+    rounds++;
+    const bool widen = everyone || conflicts_here > 0 || blamed_here || core_failed || guard_failed;
+    if (widen) factor *= 2.0;
+    make_regions(widen);
+    send_copies();
+    bool redo = widen;    // (or it sends atoms to a rank that widened)
+    for (size_t m = 0; m < to_dest.size(); m++)
+      redo = redo || (reg[to_dest[m]].widened && to_start[m + 1] > to_start[m]);
+    if (redo) {
+      valid = false;    // (a core built afresh from the window's start)
+      simulate(dt);
+      nredone++;
+    }
+    publish_histories();
+    long global[4];
+    if (checked(global)) return true;
+    everyone = global[2] > 0;
+  }
+  return false;
 }
 
 // ------------------------------------------------ a new epoch?
@@ -205,29 +273,46 @@ void HardsphereDomainWindow::bound_reach(double dt)
     if (w.vibrating()) vwall = std::max(vwall, w.sine ? w.A * w.omega : 4.0 * w.A * w.omega / M_PI);
   g = norm(base.gravity);
   D = fix.reach * fix.widen * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
-  W = 2.0 * D + 2.0 * gmx[1] * (1.0 + 1e-12) + 1e-12 * D;
 }
 
-// ------------------------------------------------ every rank's region (owned box + W)
-void HardsphereDomainWindow::make_regions()
+// the shell that holds every atom able to reach an owned atom when atoms travel up to f D
+double HardsphereDomainWindow::shell(double f) const
+{
+  return 2.0 * f * D + 2.0 * gmx[1] * (1.0 + 1e-12) + 1e-12 * f * D;
+}
+
+// ------------------------------------------------ every rank's region (owned box + its W)
+// (widened: this rank's shell has just widened, in a repair)
+void HardsphereDomainWindow::make_regions(bool widened)
 {
   const int nprocs = comm->nprocs;
+  W = shell(factor);
+  double mine[8];
+  std::copy_n(mybb, 6, mine);
+  mine[6] = W;
+  mine[7] = widened ? 1.0 : 0.0;
+  std::vector<double> all(8 * nprocs);
+  MPI_Allgather(mine, 8, MPI_DOUBLE, all.data(), 8, MPI_DOUBLE, world);
   bb.resize(6 * nprocs);
-  MPI_Allgather(mybb, 6, MPI_DOUBLE, bb.data(), 6, MPI_DOUBLE, world);
   reg.resize(nprocs);
+  for (int r = 0; r < nprocs; r++) {
+    std::copy_n(&all[8 * r], 6, &bb[6 * r]);
+    reg[r].W = all[8 * r + 6];
+    reg[r].widened = all[8 * r + 7] != 0.0;
+  }
   for (int r = 0; r < nprocs; r++)
     for (int d = 0; d < 3; d++) {
       Region &R = reg[r];
-      R.lo[d] = bb[6 * r + d] - W;
-      R.hi[d] = bb[6 * r + 3 + d] + W;
+      R.lo[d] = bb[6 * r + d] - R.W;
+      R.hi[d] = bb[6 * r + 3 + d] + R.W;
       R.whole[d] = false;
       if (d >= dim) {
         R.whole[d] = true;
       } else if (domain->periodicity[d]) {
         R.whole[d] = R.hi[d] - R.lo[d] >= domain->prd[d];
       } else {
-        R.lo[d] = std::max(R.lo[d], domain->boxlo[d] - W);
-        R.hi[d] = std::min(R.hi[d], domain->boxhi[d] + W);
+        R.lo[d] = std::max(R.lo[d], domain->boxlo[d] - R.W);
+        R.hi[d] = std::min(R.hi[d], domain->boxhi[d] + R.W);
       }
     }
 }
@@ -650,19 +735,18 @@ void HardsphereDomainWindow::watch_events()
 }
 
 // ------------------------------------------------ the window itself
-// kicks at their exact times, with the momentum shift over the whole group; false: the core
-// failed (e.g. the event cap: the gathered redo tells whether it is real)
-bool HardsphereDomainWindow::advance(double t0, double dt)
+// kicks at their exact times, with the momentum shift over the whole group (planned once for
+// the window); false: the core failed (e.g. the event cap: a repair or the gathered redo tells
+// whether it is real)
+bool HardsphereDomainWindow::advance()
 {
   // (the guard: who came near the speed bound)
-  const double slim = D / dt - 0.5 * dt * g;
+  const double slim = D / step - 0.5 * step * g;
   s2lim = slim > 0.0 ? 0.999 * slim * slim : 0.0;
   ed.track_fast(s2lim);
-  kick_from.resize(fix.kicks.size());
-  for (size_t f = 0; f < fix.kicks.size(); f++) kick_from[f] = fix.kicks[f]->kick_counter();
   if (!fix.kicks.empty()) {
     kick_tags.assign(stag.begin(), stag.end());
-    fix.schedule_kicks(t0, dt, kick_tags, smask);
+    fix.schedule_kicks(kplan, kick_tags, smask);
   }
   fix.clog.clear();
   ed.record_collisions(fix.want_rows ? &fix.clog : nullptr);
@@ -680,8 +764,8 @@ bool HardsphereDomainWindow::advance(double t0, double dt)
 // ------------------------------------------------ guard: no owned atom went too far
 // An owned atom j that went further than D (path p > D) is harmless if it stayed out of reach
 // of every rank r that did not receive it: its distance to r's owned atoms is at least
-// W + p - D = p + D + 2 a_max, more than it and any atom of r (path <= D, or harmless in turn)
-// can close. A rank that did receive it compares its history instead.
+// W + p - D = p + D + 2 a_max (W: the shell of f = 1, which every rank's holds), more than it
+// and any atom of r (path <= D, or harmless in turn) can close. A rank that did receive it compares its history instead.
 double HardsphereDomainWindow::gap_to(const double *xi, int r) const
 {
   double s2 = 0.0;
@@ -709,7 +793,7 @@ bool HardsphereDomainWindow::guard_atom(int i, double s2, double dt)
   for (int r = 0; r < comm->nprocs; r++) {
     if (r == comm->me || bb[6 * r] > bb[6 * r + 3]) continue;
     if (inside(reg[r], atom->x[i], s3)) continue;    // r has it: histories are compared
-    if (gap_to(atom->x[i], r) < W + p - D) return false;
+    if (gap_to(atom->x[i], r) < shell(1.0) + p - D) return false;
   }
   return true;
 }
@@ -819,20 +903,28 @@ void HardsphereDomainWindow::publish_histories()
 // ------------------------------------------------ compare where it mattered
 // Exactly: a copy's events up to its influence time must be its owner's, bit for bit (the
 // same stored states give the same predictions and collisions on every rank). A copy that went
-// wrong (a partner it lacked) differs by a whole event or more. Returns the copies in conflict.
+// wrong (a partner it lacked) differs by a whole event or more. Returns the copies in conflict;
+// blame marks their owners (either side may be the wrong one: an owned atom can miss a
+// collision with a copy that went wrong here, which no check of this rank sees).
 int HardsphereDomainWindow::compare_histories()
 {
-  // where each copy's published history starts in hrecv (-1: none; every copy's owner sent it)
+  // where each copy's published history starts in hrecv (-1: none; every copy's owner sent it),
+  // and who published it
   published.assign(ncopy, -1);
+  owner.resize(ncopy);
   for (int p = 0; p < comm->nprocs; p++) {
     if (p == comm->me) continue;
     for (size_t k = fix.displs[p]; k < (size_t) (fix.displs[p] + fix.counts[p]);) {
       const long t = (long) hrecv[k];
       const int sl = slot_of_tag.get(t);
-      if (sl >= 0 && widx[sl] >= 0 && widx[sl] < ncopy) published[widx[sl]] = (long) k;    // (a copy here)
+      if (sl >= 0 && widx[sl] >= 0 && widx[sl] < ncopy) {    // (a copy here)
+        published[widx[sl]] = (long) k;
+        owner[widx[sl]] = p;
+      }
       k += 2 + (size_t) hrecv[k + 1] * NEV;
     }
   }
+  blame.assign(comm->nprocs, 0);
   int conflicts = 0;
   double mine[NEV];
   for (int c = 0; c < ncopy; c++) {
@@ -860,7 +952,10 @@ int HardsphereDomainWindow::compare_histories()
       const double *t = &theirs[(size_t) a * NEV];
       for (int k = 0; k < NEV && same; k++) same = mine[k] == t[k];
     }
-    if (!same) conflicts++;
+    if (!same) {
+      conflicts++;
+      blame[owner[c]] = 1;
+    }
   }
   return conflicts;
 }

@@ -17,6 +17,7 @@
 #include "atom_record.h"
 
 #include "event_driven.h"
+#include "hardsphere_window_parts.h"
 #include "id_map.h"
 
 #include <cstdint>
@@ -29,9 +30,15 @@ class FixHardsphereED;
 class HardsphereDomainWindow : protected Pointers {
  public:
   explicit HardsphereDomainWindow(FixHardsphereED &fix);
-  // one window [t0, t0 + dt) of the owned atoms; false: a conflict, nothing was changed (the
-  // caller redoes the window gathered)
+  // one window [t0, t0 + dt) of the owned atoms, conflicts repaired among the ranks involved;
+  // false: a conflict not repaired (or not checked for), nothing was changed (the caller redoes
+  // the window gathered)
   bool run(double t0, double dt);
+  // the last window's repair: its rounds, and the ranks' windows redone in them (this rank's)
+  int repair_rounds() const { return rounds; }
+  int redone_here() const { return nredone; }
+  // the most repair rounds of one window (the shell of a rank widens by 2^rounds)
+  static constexpr int MAX_ROUNDS = 12;
   // the core no longer holds what the last window left (something else used or changed it)
   void invalidate() { valid = false; }
   // a new run keeps the core only without vibrating walls (see FixHardsphereED::setup)
@@ -39,10 +46,12 @@ class HardsphereDomainWindow : protected Pointers {
   double memory_usage() const;
 
  private:
-  // a rank's region: its owned atoms' bounding box widened by the shell W
+  // a rank's region: its owned atoms' bounding box widened by its shell W
   struct Region {
     double lo[3], hi[3];
     bool whole[3];    // the whole periodic length in this dimension (no images)
+    double W;
+    bool widened;     // the rank widened its shell in this round of a repair
   };
 
   FixHardsphereED &fix;
@@ -51,17 +60,20 @@ class HardsphereDomainWindow : protected Pointers {
   // ---- the window's stages, in order
   bool new_epoch(double t0);
   void bound_reach(double dt);
-  void make_regions();
+  void make_regions(bool widened);
   void send_copies();
+  void simulate(double dt);    // find_copies ... influence_times
   void find_copies();
   void order_by_id();
   void load_core();
   void watch_events();
-  bool advance(double t0, double dt);
+  bool advance();
   bool guard(double dt);
   void influence_times();
   void publish_histories();
   int compare_histories();
+  bool checked(long *global);
+  bool repair(double dt, bool everyone);
   void commit();
   void sum_statistics();
 
@@ -78,6 +90,7 @@ class HardsphereDomainWindow : protected Pointers {
   void event_of(int e, int m, double *out) const;
   long exchange(const std::vector<double> &send, std::vector<double> &recv);
   bool guard_atom(int i, double s2, double dt);
+  double shell(double f) const;
 
   // ---- this window (set by the stages)
   int nlocal = 0, dim = 3, nghost = 0, ncopy = 0, nwatch = 0;
@@ -89,7 +102,14 @@ class HardsphereDomainWindow : protected Pointers {
   double gmx[2] = {0, 0};        // the largest speed bound and radius over all ranks
   double mybb[6];                // this rank's bounding box
   double vwall = 0.0, g = 0.0;   // the fastest wall's speed bound, |gravity|
-  double D = 0.0, W = 0.0;       // the reach and the shell width
+  double D = 0.0, W = 0.0;       // the reach and the shell width (this rank's)
+  double factor = 1.0;           // this rank's shell: W of the factor times the reach
+  int conflicts_here = 0;        // copies in conflict here
+  bool blamed_here = false;      // a copy of an atom owned here was in conflict elsewhere
+  std::vector<int> owner, blame, blamed;    // each copy's owner; ranks blamed, by and for this
+  bool core_failed = false, guard_failed = false;
+  int rounds = 0, nredone = 0;   // the repair: rounds, windows this rank redid
+  std::vector<PlannedKick> kplan; // the window's kicks
   double s2lim = 0.0;            // squared speed above which the core lists an atom (guard)
   std::vector<double> bb;        // every rank's bounding box
   std::vector<Region> reg;       // every rank's region

@@ -209,7 +209,7 @@ void HardsphereGatherWindow::schedule_kicks(double t0, double dt)
     const int k = order[s];
     cmask[s] = comm->nprocs > 1 ? (int) recvbuf[(size_t) k * NPACK + AtomRecordAt::MASK] : atom->mask[k];
   }
-  if (!fix.kicks.empty()) fix.schedule_kicks(t0, dt, otags, cmask);
+  if (!fix.kicks.empty()) fix.schedule_kicks(fix.plan_kicks(t0, dt), otags, cmask);
 }
 
 // the window itself; a core that fails stops the run with what went wrong

@@ -39,6 +39,15 @@ class HardsphereDriving {
   ~HardsphereDriving() = default;    // (the fix is deleted as a fix)
 };
 
+// one kick of a window as planned: its epoch time, the fix (its place among the driving fixes),
+// the kick's index and the velocity shift that keeps the momentum
+struct PlannedKick {
+  double t;
+  int fix;
+  long k;
+  granfric::Vec3 dvcm;
+};
+
 // a plane wall of the core
 class HardsphereWallPart {
  public:
