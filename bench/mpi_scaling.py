@@ -10,6 +10,8 @@ run, not a test. Writes bench/results/mpi_scaling.csv and prints a markdown tabl
     /usr/bin/python3 bench/mpi_scaling.py [--quick | --full] [--ranks 2] [--repeat K] [--n NSIDE]
     /usr/bin/python3 bench/mpi_scaling.py --callgrind [--ranks 2]
     /usr/bin/python3 bench/mpi_scaling.py --comm [--ranks 2 4 8 16] [--n NSIDE] [--dt DT]
+    /usr/bin/python3 bench/mpi_scaling.py --conflicts [--ranks 4 16 64] [--n NSIDE] [--dt DT ...]
+                                          [--phi PHI ...] [--ncoll C]
 
 --callgrind: the efficiency from instruction counts instead (N = 99856), for the whole short
 run and for its steady state (see callgrind_table).
@@ -23,12 +25,23 @@ atoms of the shell around its subdomain), the conflicts and the windows redone, 
 peak memory per rank. Writes
 bench/results/mpi_comm.csv.
 
+--conflicts: how often a window needs a repair, against the rank count, the fraction and the
+step (ranks oversubscribed; C collisions per particle, default 10, after 2 of equilibration;
+defaults N = 632^2, fractions 0.05 and 0.3, steps of 0.5, 1 and 2 mean free times, 4, 16 and
+64 ranks). A conflict arises where a chain of collisions crosses a subdomain boundary from
+beyond the shell, so the model is a rate per unit length of boundary: a window needs a repair
+with probability q = 1 - exp(-lambda B), B the total length of the boundaries between
+subdomains (in diameters). lambda is fitted per fraction and step over the rank counts, and
+the table gives q and the expected rounds per window at 10^3 ranks (a 32 x 32 grid) for
+N = 10^6 and 10^9 at the same fraction. Writes bench/results/mpi_conflicts.csv.
+
 --repeat K (default 3): each case runs K times on 1 and on several ranks, interleaved, and the
 efficiency is taken from the fastest run of each (a shared machine only ever adds time, and two
 ranks on two cores suffer most from it); the table also gives the spread of the per-round
 efficiencies. --n 316 restricts the cases to one system size (N = 316^2).
 """
 import argparse
+import math
 import os
 import re
 import sys
@@ -101,11 +114,18 @@ def run(nside, phi, dtmft, ncoll, np_, parallel="domain"):
     out = p.stdout
     loop = [float(m) for m in re.findall(r"Loop time of ([0-9.eE+-]+)", out)][-1]
     b = re.search(r"BENCH dim 2 N (\d+) .* collisions (\d+)", out)
-    par = re.search(r"PARALLEL windows ([0-9.e+-]+) conflicts ([0-9.e+-]+) redone ([0-9.e+-]+) "
-                    r"comm ([0-9.e+-]+)", out)
-    return {"N": int(b.group(1)), "collisions": int(b.group(2)), "loop": loop,
-            "windows": float(par.group(1)), "conflicts": float(par.group(2)),
-            "redone": float(par.group(3)), "comm": float(par.group(4))}
+    par = parallel_line(out)
+    return dict(par, N=int(b.group(1)), collisions=int(b.group(2)), loop=loop)
+
+
+def parallel_line(out):
+    """The PARALLEL line of in.speed: windows, copies in conflict, windows repaired (or redone
+    gathered), doubles received, repair rounds, windows redone by single ranks in them,
+    windows redone gathered."""
+    m = re.search(r"PARALLEL windows (\S+) conflicts (\S+) redone (\S+) comm (\S+) rounds (\S+) "
+                  r"ranks_redone (\S+) gathered (\S+)", out)
+    keys = ("windows", "conflicts", "redone", "comm", "rounds", "ranks_redone", "gathered")
+    return {k: float(v) for k, v in zip(keys, m.groups())}
 
 
 def comm_table(ranks, nside, dtmft, phi=0.3):
@@ -117,16 +137,19 @@ def comm_table(ranks, nside, dtmft, phi=0.3):
                     np=np_, log=os.devnull, quiet=False)
         out = p.stdout
         grid = re.findall(r"(\d+) by (\d+) by (\d+) MPI processor grid", out)[-1]
-        par = re.search(r"PARALLEL windows ([0-9.e+-]+) conflicts ([0-9.e+-]+) redone "
-                        r"([0-9.e+-]+) comm ([0-9.e+-]+)", out)
+        par = parallel_line(out)
         mem = [float(m) for m in re.findall(r"Per MPI rank memory allocation \(min/avg/max\) = "
                                             r"[0-9.]+ \| [0-9.]+ \| ([0-9.]+) Mbytes", out)]
-        N = int(re.search(r"BENCH dim 2 N (\d+)", out).group(1))
-        windows = max(float(par.group(1)), 1.0)
+        b = re.search(r"BENCH dim 2 N (\d+) .* collisions (\d+)", out)
+        N = int(b.group(1))
+        windows = max(par["windows"], 1.0)
         rows.append({"ranks": np_, "grid": "x".join(grid[:2]), "N": N,
-                     "windows": windows, "conflicts": float(par.group(2)),
-                     "redone": float(par.group(3)),
-                     "doubles_per_rank_per_window": float(par.group(4)) / windows / np_,
+                     "windows": windows, "conflicts": par["conflicts"],
+                     "redone": par["redone"], "rounds": par["rounds"],
+                     "ranks_per_round": par["ranks_redone"] / max(par["rounds"], 1.0),
+                     "gathered": par["gathered"],
+                     "collisions_per_rank_per_window": int(b.group(2)) / windows / np_,
+                     "doubles_per_rank_per_window": par["comm"] / windows / np_,
                      "peak_MB_per_rank": max(mem) if mem else float("nan")})
     # the surface model: a rank receives the atoms within the shell around its subdomain,
     # so the data per rank follows the length of the subdomain's boundary with other
@@ -138,14 +161,68 @@ def comm_table(ranks, nside, dtmft, phi=0.3):
     bound0 = rows[0]["boundary_per_rank_over_L"]
     path = cli.write_rows(os.path.join(HERE, "results", "mpi_comm.csv"), rows)
     print(f"N = {rows[0]['N']}, fraction {phi}, steps of {dtmft} mean free times")
-    print(f"| ranks | grid | windows | conflicts | redone | doubles received per rank per window | "
-          f"against {rows[0]['ranks']} ranks | the boundary model's ratio | peak memory per rank (MB) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print(f"| ranks | grid | windows | copies in conflict | windows repaired | rounds | ranks redone "
+          f"per round | gathered | collisions per rank per window | doubles received per rank per "
+          f"window | against {rows[0]['ranks']} ranks | the boundary model's ratio | peak memory "
+          f"per rank (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for x in rows:
         print(f"| {x['ranks']} | {x['grid']} | {x['windows']:.0f} | {x['conflicts']:.0f} | "
-              f"{x['redone']:.0f} | {x['doubles_per_rank_per_window']:.0f} | "
+              f"{x['redone']:.0f} | {x['rounds']:.0f} | {x['ranks_per_round']:.1f} | "
+              f"{x['gathered']:.0f} | {x['collisions_per_rank_per_window']:.0f} | "
+              f"{x['doubles_per_rank_per_window']:.0f} | "
               f"{x['doubles_per_rank_per_window'] / base:.2f} | "
               f"{x['boundary_per_rank_over_L'] / bound0:.2f} | {x['peak_MB_per_rank']:.1f} |")
+    print(f"\nwritten {path}")
+
+
+def boundary_length(grid, nside, phi):
+    """Total length of the boundaries between subdomains (diameters) of a square periodic box of
+    nside^2 discs at area fraction phi split px x py: px vertical and py horizontal lines of the
+    box's length (none in a direction split into one part)."""
+    px, py = (int(v) for v in grid.split("x"))
+    L = nside * math.sqrt(math.pi / (4.0 * phi))
+    return L * ((px if px > 1 else 0) + (py if py > 1 else 0))
+
+
+def conflict_table(ranks, nside, dts, phis, ncoll):
+    """Windows repaired against rank count, fraction and step, and the boundary-rate model."""
+    rows = []
+    cases = [(phi, dt, np_) for phi in phis for dt in dts for np_ in ranks]
+    for phi, dt, np_ in cli.progress(cases, "conflicts"):
+        p = lmp.run(os.path.join(HERE, "in.speed"), {"dim": 2, "nside": nside, "phi": phi,
+                                                       "dtmft": dt, "ncoll": ncoll, "neq": 2},
+                    np=np_, log=os.devnull, quiet=False)
+        out = p.stdout
+        grid = "x".join(re.findall(r"(\d+) by (\d+) by (\d+) MPI processor grid", out)[-1][:2])
+        par = parallel_line(out)
+        B = boundary_length(grid, nside, phi)
+        rows.append({"phi": phi, "dtmft": dt, "ranks": np_, "grid": grid, "windows": par["windows"],
+                     "repaired": par["redone"], "gathered": par["gathered"],
+                     "rounds_per_repair": par["rounds"] / max(par["redone"], 1.0),
+                     "ranks_per_round": par["ranks_redone"] / max(par["rounds"], 1.0),
+                     "boundary": B, "lambda": -math.log(max(1.0 - par["redone"] / par["windows"], 1e-12)) / B})
+    path = cli.write_rows(os.path.join(HERE, "results", "mpi_conflicts.csv"), rows)
+    print(f"N = {nside}^2, {ncoll} collisions per particle; lambda: repairs per window per diameter "
+          f"of boundary")
+    print("| fraction | step (mft) | ranks (grid) | windows | repaired | gathered | rounds per repair | "
+          "ranks redone per round | boundary (diameters) | lambda |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for x in rows:
+        print(f"| {x['phi']} | {x['dtmft']} | {x['ranks']} ({x['grid']}) | {x['windows']:.0f} | "
+              f"{x['repaired']:.0f} | {x['gathered']:.0f} | {x['rounds_per_repair']:.2f} | "
+              f"{x['ranks_per_round']:.1f} | {x['boundary']:.0f} | {x['lambda']:.2e} |")
+    print("\nfitted lambda (pooled over the rank counts: repairs / sum of windows x boundary) and "
+          "the model at 10^3 ranks (32 x 32)")
+    print("| fraction | step (mft) | lambda | q at N = 10^6 | q at N = 10^9 | repairs in the runs |")
+    print("|---|---|---|---|---|---|")
+    for phi in phis:
+        for dt in dts:
+            sel = [x for x in rows if x["phi"] == phi and x["dtmft"] == dt]
+            reps = sum(x["repaired"] for x in sel)
+            lam = reps / sum(x["windows"] * x["boundary"] for x in sel)
+            q = {n: 1.0 - math.exp(-lam * 64 * math.sqrt(n * math.pi / (4.0 * phi))) for n in (1e6, 1e9)}
+            print(f"| {phi} | {dt} | {lam:.2e} | {q[1e6]:.3f} | {q[1e9]:.3f} | {reps:.0f} |")
     print(f"\nwritten {path}")
 
 
@@ -158,6 +235,11 @@ def main(argv=None):
                     help="rank count (default 2; --comm: several, default 2 4 8 16)")
     ap.add_argument("--comm", action="store_true",
                     help="data received per rank against the rank count (see above)")
+    ap.add_argument("--conflicts", action="store_true",
+                    help="windows repaired against rank count, fraction and step (see above)")
+    ap.add_argument("--phi", type=float, nargs="+", default=None, help="--conflicts: fractions")
+    ap.add_argument("--ncoll", type=float, default=10.0,
+                    help="--conflicts: collisions per particle per run")
     ap.add_argument("--repeat", type=int, default=3,
                     help="interleaved runs per case; the fastest of each rank count is used")
     ap.add_argument("--n", type=int, default=0, help="only this lattice side (N = n^2)")
@@ -168,6 +250,9 @@ def main(argv=None):
     a = ap.parse_args(argv)
     if a.comm:
         return comm_table(a.ranks or [2, 4, 8, 16], a.n or 632, (a.dt or [1.0])[0])
+    if a.conflicts:
+        return conflict_table(a.ranks or [4, 16, 64], a.n or 632, a.dt or [0.5, 1.0, 2.0],
+                              a.phi or [0.05, 0.3], a.ncoll)
     a.ranks = (a.ranks or [2])[0]
     if a.callgrind:
         return callgrind_table(a.ranks)

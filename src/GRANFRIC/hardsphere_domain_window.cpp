@@ -275,10 +275,12 @@ void HardsphereDomainWindow::bound_reach(double dt)
   D = fix.reach * fix.widen * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
 }
 
-// the shell that holds every atom able to reach an owned atom when atoms travel up to f D
+// the shell that holds every atom able to reach an owned atom when atoms travel up to D
+// (f = 1), and f times that (a repair's wider shells: they grow even where nothing moves fast,
+// as along a chain of touching grains)
 double HardsphereDomainWindow::shell(double f) const
 {
-  return 2.0 * f * D + 2.0 * gmx[1] * (1.0 + 1e-12) + 1e-12 * f * D;
+  return f * (2.0 * D + 2.0 * gmx[1] * (1.0 + 1e-12) + 1e-12 * D);
 }
 
 // ------------------------------------------------ every rank's region (owned box + its W)
