@@ -635,8 +635,9 @@ void FixHardsphereED::initial_integrate(int vflag)
   totals[STEP_CONFLICTS] = totals[STEP_COMM] = totals[STEP_PREDICTED] = 0.0;
   if (resync) resync_for_restart();
   if (parallel == DOMAIN && comm->nprocs > 1) {
-    // the shell widens after a conflict (in dense gases collision chains outrun v_max) and
-    // narrows slowly while windows pass; the same on every rank (conflicts are global)
+    // the reach widens after a guard failed (kicks or walls made atoms faster than the bound)
+    // and narrows slowly while windows pass; the same on every rank (the shells of the ranks
+    // in a conflict widen on their own, see HardsphereDomainWindow)
     const bool done = dwin->run(t0, dt);
     const int rounds = dwin->repair_rounds();
     if (rounds > 0) {
@@ -648,7 +649,7 @@ void FixHardsphereED::initial_integrate(int vflag)
     if (done) {
       totals[DOMAIN_WINDOWS] += 1.0;
       if (rounds > 0) totals[WINDOWS_REDONE] += 1.0;
-      widen = rounds > 0 ? MIN(64.0, 2.0 * widen) : MAX(1.0, widen * 0.99);
+      widen = dwin->guard_widened() ? MIN(64.0, 2.0 * widen) : MAX(1.0, widen * 0.99);
       finish_window(dt);
       return;
     }

@@ -103,8 +103,9 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   T0 = fix.epoch_time(update->ntimestep - 1);
   T1 = fix.epoch_time(update->ntimestep);
   bound_reach(dt);
-  factor = 1.0;
+  factor = own_factor;
   rounds = nredone = 0;
+  all_widened = false;
   kick_from.resize(fix.kicks.size());
   for (size_t f = 0; f < fix.kicks.size(); f++) kick_from[f] = fix.kicks[f]->kick_counter();
   kplan.clear();
@@ -126,6 +127,10 @@ bool HardsphereDomainWindow::run(double t0, double dt)
     valid = false;
     return false;
   }
+  // a rank that widened keeps its shell for the next windows and narrows it slowly while they
+  // pass (in dense gases momentum runs along chains of touching grains much faster than v_max:
+  // the shells near them adapt to that instead of failing window after window)
+  own_factor = factor > own_factor ? std::min(64.0, factor) : std::max(1.0, 0.99 * own_factor);
   commit();
   sum_statistics();
   fix.gwin->invalidate();
@@ -182,6 +187,7 @@ bool HardsphereDomainWindow::checked(long *global)
 // copy of it) makes every rank widen and redo. False: not repaired in MAX_ROUNDS rounds.
 bool HardsphereDomainWindow::repair(double dt, bool everyone)
 {
+  all_widened = everyone;
   while (rounds < MAX_ROUNDS) {
     rounds++;
     const bool widen = everyone || conflicts_here > 0 || blamed_here || core_failed || guard_failed;
@@ -200,6 +206,7 @@ bool HardsphereDomainWindow::repair(double dt, bool everyone)
     long global[4];
     if (checked(global)) return true;
     everyone = global[2] > 0;
+    all_widened = all_widened || everyone;
   }
   return false;
 }

@@ -36,6 +36,8 @@ class HardsphereDomainWindow : protected Pointers {
   bool run(double t0, double dt);
   // the last window's repair: its rounds, and the ranks' windows redone in them (this rank's)
   int repair_rounds() const { return rounds; }
+  // a guard failure made every rank widen in the last window's repair
+  bool guard_widened() const { return all_widened; }
   int redone_here() const { return nredone; }
   // the most repair rounds of one window (the shell of a rank widens by 2^rounds)
   static constexpr int MAX_ROUNDS = 12;
@@ -103,7 +105,8 @@ class HardsphereDomainWindow : protected Pointers {
   double mybb[6];                // this rank's bounding box
   double vwall = 0.0, g = 0.0;   // the fastest wall's speed bound, |gravity|
   double D = 0.0, W = 0.0;       // the reach and the shell width (this rank's)
-  double factor = 1.0;           // this rank's shell: W of the factor times the reach
+  double factor = 1.0;           // this rank's shell in this window: shell(factor)
+  bool all_widened = false;      // every rank widened (a guard failed)
   int conflicts_here = 0;        // copies in conflict here
   bool blamed_here = false;      // a copy of an atom owned here was in conflict elsewhere
   std::vector<int> owner, blame, blamed;    // each copy's owner; ranks blamed, by and for this
@@ -121,6 +124,7 @@ class HardsphereDomainWindow : protected Pointers {
   // ---- kept from one window to the next
   bool valid = false;
   bigint last_natoms = -1;
+  double own_factor = 1.0;       // this rank's shell factor at the start of a window
   double grid_lo[3] = {0, 0, 0}, grid_hi[3] = {0, 0, 0};    // the kept cell grid (open dims)
   bool grid_whole[3] = {false, false, false};
   granfric::IdMap slot_of_tag;                  // slot of each atom ID here

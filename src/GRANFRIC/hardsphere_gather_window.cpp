@@ -109,13 +109,14 @@ bool HardsphereGatherWindow::can_reuse(double T0)
 {
   bool reuse = valid && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
       (int) offset.size() == noff * ntotal;
-  for (int s = 0; reuse && s < ntotal; s++) reuse = reusable(s, T0);
+  const hardsphere::FarWrap wrap(domain);
+  for (int s = 0; reuse && s < ntotal; s++) reuse = reusable(s, T0, wrap);
   return reuse;
 }
 
 // does core particle s hold this window's atom (its position up to the periods LAMMPS wrapped,
 // which update its offsets)?
-bool HardsphereGatherWindow::reusable(int s, double T0)
+bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWrap &wrap)
 {
   const int k = order[s];
   // this window's x, v, omega of the atom (in place on one rank)
@@ -138,7 +139,6 @@ bool HardsphereGatherWindow::reusable(int s, double T0)
   for (int d = 0; d < 3; d++)
     if (bv[d] != w[3 + d] || bw[d] != w[6 + d]) return false;
   // positions: what this window wrote, or that shifted by one period by Domain::pbc()
-  const hardsphere::FarWrap wrap(domain);
   for (int d = 0; d < 3; d++) {
     int8_t &stored = offset[(size_t) s * noff + d];
     int off = d < noff ? stored : 0;

@@ -25,6 +25,9 @@
 namespace LAMMPS_NS {
 
 class FixHardsphereED;
+namespace hardsphere {
+  class FarWrap;
+}
 
 class HardsphereGatherWindow : protected Pointers {
  public:
@@ -51,7 +54,7 @@ class HardsphereGatherWindow : protected Pointers {
 
   // ---- helpers of the stages
   AtomRecord record(int k) const;    // atom k of the gathered system
-  bool reusable(int s, double T0);
+  bool reusable(int s, double T0, const hardsphere::FarWrap &wrap);
   void written_state(int s, double t, double *w) const;
 
   int ntotal = 0;                 // atoms in the system

@@ -175,8 +175,10 @@ def test_8_and_16_ranks_equal_serial_bit_for_bit(tmp_path, scene):
         differ = identical(w, "s1", f"s{n}")
         assert not differ, f"{n} ranks: {len(differ)} atoms differ, the first IDs {differ[:5]}"
     # a repair involves the ranks near the conflict: on the 4 x 4 grid fewer windows are redone
-    # than all ranks in all rounds (on 4 x 2 every rank neighbours every other)
-    assert d["f_ed[20]"][-1] < 16 * d["f_ed[19]"][-1], "16 ranks: every repair redid all"
+    # than all ranks in all rounds (on 4 x 2 every rank neighbours every other). Not so with
+    # kicks: an atom kicked beyond the speed bound fails the guard, and every rank widens
+    if scene == "dense":
+        assert d["f_ed[20]"][-1] < 16 * d["f_ed[19]"][-1], "16 ranks: every repair redid all"
 
 
 def test_atom_replaced_between_runs(tmp_path):

@@ -159,6 +159,10 @@ void EventDriven::setup_cells()
     nc[d] = std::max(1, nc[d] / 2);
     cw[d] = L[d] / nc[d];
   }
+  for (int d = 0; d < 3; d++) {
+    kcells[d] = opt.periodic[d] ? (double) nc[d] : 0.0;
+    kper[d] = opt.periodic[d] ? 0.0 : P[d];
+  }
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
   for (auto &m : img) m.next = -1;
   cell_amax = amax;
@@ -244,10 +248,11 @@ void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
     if (t < xt) xt = t, xdim = d, xdir = dir;
   };
   // the lower boundary of cell c + u in the particle's frame (k: its image, in a non-periodic
-  // dimension minus its frame shift)
+  // dimension minus its frame shift): lo + (c + u + k nc) cw in a periodic dimension, and
+  // lo + (c + u) cw + k P in another (one expression for both, no branch)
   auto bound = [&](int d, double u) {
-    return opt.periodic[d] ? opt.lo[d] + ((double) p.c[d] + u + (double) k[d] * nc[d]) * cw[d]
-                           : opt.lo[d] + ((double) p.c[d] + u) * cw[d] + (double) k[d] * P[d];
+    return opt.lo[d] + ((double) p.c[d] + u + (double) k[d] * kcells[d]) * cw[d] +
+        (double) k[d] * kper[d];
   };
   for (int d = 0; d < DIM; d++) {
     const double v = vi[d];

@@ -541,6 +541,8 @@ class EventDriven {
   big_vector<Frame> FR;                  // (set_frame; empty without frames)
   int nc[3] = {1, 1, 1};                 // cells per dimension
   double cw[3] = {1, 1, 1};              // cell widths
+  // a cell boundary's shift per image: nc cells in a periodic dimension, P in another
+  double kcells[3] = {0, 0, 0}, kper[3] = {0, 0, 0};
   big_vector<int> head;                 // cell lists (singly linked through Image::next)
   double cell_amax = 0.0;                // largest radius the cells admit
   // Neighbour lists (neighbour_lists.cpp): a particle lists every particle whose list centre lies
