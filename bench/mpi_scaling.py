@@ -121,10 +121,10 @@ def run(nside, phi, dtmft, ncoll, np_, parallel="domain"):
 def parallel_line(out):
     """The PARALLEL line of in.speed: windows, copies in conflict, windows repaired (or redone
     gathered), doubles received, repair rounds, windows redone by single ranks in them,
-    windows redone gathered."""
+    windows redone gathered, copies simulated by all ranks in the last window."""
     m = re.search(r"PARALLEL windows (\S+) conflicts (\S+) redone (\S+) comm (\S+) rounds (\S+) "
-                  r"ranks_redone (\S+) gathered (\S+)", out)
-    keys = ("windows", "conflicts", "redone", "comm", "rounds", "ranks_redone", "gathered")
+                  r"ranks_redone (\S+) gathered (\S+) copies (\S+)", out)
+    keys = ("windows", "conflicts", "redone", "comm", "rounds", "ranks_redone", "gathered", "copies")
     return {k: float(v) for k, v in zip(keys, m.groups())}
 
 
@@ -149,6 +149,7 @@ def comm_table(ranks, nside, dtmft, phi=0.3):
                      "ranks_per_round": par["ranks_redone"] / max(par["rounds"], 1.0),
                      "gathered": par["gathered"],
                      "collisions_per_rank_per_window": int(b.group(2)) / windows / np_,
+                     "copies_per_owned_atom": par["copies"] / N,
                      "doubles_per_rank_per_window": par["comm"] / windows / np_,
                      "peak_MB_per_rank": max(mem) if mem else float("nan")})
     # the surface model: a rank receives the atoms within the shell around its subdomain,
@@ -162,14 +163,15 @@ def comm_table(ranks, nside, dtmft, phi=0.3):
     path = cli.write_rows(os.path.join(HERE, "results", "mpi_comm.csv"), rows)
     print(f"N = {rows[0]['N']}, fraction {phi}, steps of {dtmft} mean free times")
     print(f"| ranks | grid | windows | copies in conflict | windows repaired | rounds | ranks redone "
-          f"per round | gathered | collisions per rank per window | doubles received per rank per "
-          f"window | against {rows[0]['ranks']} ranks | the boundary model's ratio | peak memory "
-          f"per rank (MB) |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          f"per round | gathered | collisions per rank per window | copies per owned atom | doubles "
+          f"received per rank per window | against {rows[0]['ranks']} ranks | the boundary model's "
+          f"ratio | peak memory per rank (MB) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for x in rows:
         print(f"| {x['ranks']} | {x['grid']} | {x['windows']:.0f} | {x['conflicts']:.0f} | "
               f"{x['redone']:.0f} | {x['rounds']:.0f} | {x['ranks_per_round']:.1f} | "
               f"{x['gathered']:.0f} | {x['collisions_per_rank_per_window']:.0f} | "
+              f"{x['copies_per_owned_atom']:.3f} | "
               f"{x['doubles_per_rank_per_window']:.0f} | "
               f"{x['doubles_per_rank_per_window'] / base:.2f} | "
               f"{x['boundary_per_rank_over_L'] / bound0:.2f} | {x['peak_MB_per_rank']:.1f} |")

@@ -632,7 +632,7 @@ void FixHardsphereED::initial_integrate(int vflag)
   ed.tally_particles(atally != nullptr);
   const double dt = update->dt;
   const double t0 = window_start_time();
-  totals[STEP_CONFLICTS] = totals[STEP_COMM] = totals[STEP_PREDICTED] = 0.0;
+  totals[STEP_CONFLICTS] = totals[STEP_COMM] = totals[STEP_PREDICTED] = totals[STEP_COPIES] = 0.0;
   if (resync) resync_for_restart();
   if (parallel == DOMAIN && comm->nprocs > 1) {
     // the reach widens after a guard failed (kicks or walls made atoms faster than the bound)

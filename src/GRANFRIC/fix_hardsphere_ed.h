@@ -49,7 +49,9 @@ class FixHardsphereED : public Fix {
          // particles predicted afresh at the start of the last step (over all ranks)
          STEP_PREDICTED,
          // repairs: rounds in total, and ranks' windows redone in them in total
-         REPAIR_ROUNDS, RANKS_REDONE, NVECTOR };
+         REPAIR_ROUNDS, RANKS_REDONE,
+         // copies simulated in the last step (over all ranks)
+         STEP_COPIES, NVECTOR };
   enum { GATHER, DOMAIN };
   static constexpr double RESTART_FORMAT = 2.0;    // (see write_restart)
 

@@ -1008,6 +1008,7 @@ void HardsphereDomainWindow::sum_statistics()
   std::vector<double> sums;
   last.flatten(counts, sums);
   counts.push_back(repredicted);
+  counts.push_back(nghost);
   sum_over_ranks(counts, MPI_LONG, world);
   sum_over_ranks(sums, MPI_DOUBLE, world);
   last.unflatten(counts.data(), sums.data());
@@ -1015,7 +1016,8 @@ void HardsphereDomainWindow::sum_statistics()
   MPI_Allreduce(&lmax, &gmax, 1, MPI_LONG, MPI_MAX, world);
   last.max_collisions_one_particle = gmax;
   last.global_events = events;
-  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) counts.back();
+  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) counts[counts.size() - 2];
+  fix.totals[FixHardsphereED::STEP_COPIES] = (double) counts.back();
 }
 
 double HardsphereDomainWindow::memory_usage() const
