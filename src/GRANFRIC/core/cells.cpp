@@ -37,6 +37,34 @@ std::vector<int> EventDriven::cell_order() const
   return order;
 }
 
+// v in the new order (v[order[k]] becomes element k, then fix(element)), in place: each cycle
+// of the permutation is followed once (element k takes the one at order[k], the first of the
+// cycle kept aside), so that a renumbering needs no second copy of the particles' records
+// (at N = 10^6 that copy was the peak of the whole run's memory)
+template <class V, class F>
+static void permute(V &v, const std::vector<int> &order, F &&fix)
+{
+  const size_t n = order.size();
+  std::vector<bool> placed(n, false);
+  for (size_t s = 0; s < n; s++) {
+    if (placed[s]) continue;
+    const auto first = v[s];
+    size_t k = s;
+    for (;;) {
+      placed[k] = true;
+      const size_t o = (size_t) order[k];
+      if (o == s) {
+        v[k] = first;
+        fix(v[k]);
+        break;
+      }
+      v[k] = v[o];
+      fix(v[k]);
+      k = o;
+    }
+  }
+}
+
 // new internal index k for the particle order[k]: records, partner references, index maps and
 // cell lists follow (the queue is the caller's)
 void EventDriven::renumber(const std::vector<int> &order)
@@ -44,37 +72,20 @@ void EventDriven::renumber(const std::vector<int> &order)
   const int n = (int) H.size();
   std::vector<int> newloc(n);
   for (int k = 0; k < n; k++) newloc[order[k]] = k;
+  auto same = [](auto &) {};
   {
-    big_vector<Hot> Q(n);
-    big_vector<Cold> K(n);
-    big_vector<Sched> T(n);
-    big_vector<Image> M(n);
-    big_vector<int> newext(n);
-    for (int k = 0; k < n; k++) {
-      const int o = order[k];
-      Q[k] = H[o];
-      K[k] = C[o];
-      T[k] = S[o];
-      M[k] = img[o];
-      if (T[k].cpartner >= 0) T[k].cpartner = newloc[T[k].cpartner];
-      if (K[k].last_partner >= 0) K[k].last_partner = newloc[K[k].last_partner];
-      newext[k] = ext[o];
-    }
-    if (!WT.empty()) {
-      big_vector<double> W(n);
-      for (int k = 0; k < n; k++) W[k] = WT[order[k]];
-      WT.swap(W);
-    }
-    if (!TL.empty()) {
-      big_vector<double> W(n);
-      for (int k = 0; k < n; k++) W[k] = TL[order[k]];
-      TL.swap(W);
-    }
-    if (!FR.empty()) {
-      big_vector<Frame> W(n);
-      for (int k = 0; k < n; k++) W[k] = FR[order[k]];
-      FR.swap(W);
-    }
+    permute(H, order, same);
+    permute(C, order, [&](Cold &c) {
+      if (c.last_partner >= 0) c.last_partner = newloc[c.last_partner];
+    });
+    permute(S, order, [&](Sched &s) {
+      if (s.cpartner >= 0) s.cpartner = newloc[s.cpartner];
+    });
+    permute(img, order, same);
+    permute(ext, order, same);
+    if (!WT.empty()) permute(WT, order, same);
+    if (!TL.empty()) permute(TL, order, same);
+    if (!FR.empty()) permute(FR, order, same);
     if (lists) {
       big_vector<Vec3> X(n);
       big_vector<Entry> B((size_t) n * LCAP);
@@ -92,11 +103,6 @@ void EventDriven::renumber(const std::vector<int> &order)
       NB.swap(B);
       NN.swap(N);
     }
-    H.swap(Q);
-    C.swap(K);
-    S.swap(T);
-    img.swap(M);
-    ext.swap(newext);
   }
   for (int k = 0; k < n; k++) loc[ext[k]] = k;
   std::fill(head.begin(), head.end(), -1);
