@@ -640,12 +640,8 @@ void FixHardsphereED::initial_integrate(int vflag)
     // in a conflict widen on their own, see HardsphereDomainWindow)
     const bool done = dwin->run(t0, dt);
     const int rounds = dwin->repair_rounds();
-    if (rounds > 0) {
-      int ranks = dwin->redone_here();
-      MPI_Allreduce(MPI_IN_PLACE, &ranks, 1, MPI_INT, MPI_SUM, world);
-      totals[REPAIR_ROUNDS] += rounds;
-      totals[RANKS_REDONE] += ranks;
-    }
+    totals[REPAIR_ROUNDS] += rounds;
+    totals[RANKS_REDONE] += (double) dwin->windows_redone();
     if (done) {
       totals[DOMAIN_WINDOWS] += 1.0;
       if (rounds > 0) totals[WINDOWS_REDONE] += 1.0;

@@ -114,8 +114,8 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   send_copies();
   simulate(dt);
   publish_histories();
-  long global[4];
-  bool ok = checked(global);
+  long global[5];
+  bool ok = checked(global, false);
   double *totals = fix.totals;
   totals[FixHardsphereED::STEP_CONFLICTS] = (double) (global[0] + global[1]);
   totals[FixHardsphereED::CONFLICTS] += totals[FixHardsphereED::STEP_CONFLICTS];
@@ -156,17 +156,19 @@ void HardsphereDomainWindow::simulate(double dt)
 }
 
 // did every rank pass its check? global: the conflicts, the ranks whose core or guard failed,
-// those whose guard failed, over all ranks, and the doubles received so far (the fix's count);
+// those whose guard failed, over all ranks, the doubles received so far (the fix's count) and
+// the ranks that redid their windows in this round (redid: this one did; counted in nredone);
 // after conflicts each rank learns whether a copy of one of its atoms was among them
-bool HardsphereDomainWindow::checked(long *global)
+bool HardsphereDomainWindow::checked(long *global, bool redid)
 {
   const bool fail = core_failed || guard_failed;
   conflicts_here = 0;
   blame.assign(comm->nprocs, 0);
   if (!fail) conflicts_here = compare_histories();
-  long local[4] = {conflicts_here, fail ? 1 : 0, guard_failed ? 1 : 0, received};
-  MPI_Allreduce(local, global, 4, MPI_LONG, MPI_SUM, world);
+  long local[5] = {conflicts_here, fail ? 1 : 0, guard_failed ? 1 : 0, received, redid ? 1 : 0};
+  MPI_Allreduce(local, global, 5, MPI_LONG, MPI_SUM, world);
   fix.totals[FixHardsphereED::STEP_COMM] = (double) global[3];
+  nredone += global[4];
   blamed_here = false;
   if (global[0] == 0) return global[1] == 0;
   blamed.resize(comm->nprocs);
@@ -178,9 +180,9 @@ bool HardsphereDomainWindow::checked(long *global)
 // ------------------------------------------------ repair a window with conflicts
 // Without gathering it: each rank that found a conflict (or whose core failed), and the owner
 // of each copy in conflict, widens its shell twofold and redoes its window, and so does every
-// rank whose atoms it then receives as
-// copies (only those publish the histories of the atoms it newly needs); all others keep
-// theirs and only compare again, against the histories now published. Rounds go on until no
+// rank whose atoms it then receives as copies (only those publish the histories of the atoms
+// it newly needs); all others keep theirs and only compare again, against the histories now
+// published. Rounds go on until no
 // rank finds a conflict. The check's argument holds for whatever mix of first and repeated
 // windows the ranks then hold: the earliest wrong event anywhere would be found by the rank
 // that owns it. A guard failure (an atom that went too far may have reached a rank without a
@@ -200,11 +202,10 @@ bool HardsphereDomainWindow::repair(double dt, bool everyone)
     if (redo) {
       valid = false;    // (a core built afresh from the window's start)
       simulate(dt);
-      nredone++;
     }
     publish_histories();
-    long global[4];
-    if (checked(global)) return true;
+    long global[5];
+    if (checked(global, redo)) return true;
     everyone = global[2] > 0;
     all_widened = all_widened || everyone;
   }
@@ -774,7 +775,8 @@ bool HardsphereDomainWindow::advance()
 // An owned atom j that went further than D (path p > D) is harmless if it stayed out of reach
 // of every rank r that did not receive it: its distance to r's owned atoms is at least
 // W + p - D = p + D + 2 a_max (W: the shell of f = 1, which every rank's holds), more than it
-// and any atom of r (path <= D, or harmless in turn) can close. A rank that did receive it compares its history instead.
+// and any atom of r (path <= D, or harmless in turn) can close. A rank that did receive it
+// compares its history instead.
 double HardsphereDomainWindow::gap_to(const double *xi, int r) const
 {
   double s2 = 0.0;
@@ -913,7 +915,7 @@ void HardsphereDomainWindow::publish_histories()
 // Exactly: a copy's events up to its influence time must be its owner's, bit for bit (the
 // same stored states give the same predictions and collisions on every rank). A copy that went
 // wrong (a partner it lacked) differs by a whole event or more. Returns the copies in conflict;
-// blame marks their owners (either side may be the wrong one: an owned atom can miss a
+// blame (zeroed by the caller) marks their owners (either side may be the wrong one: an owned atom can miss a
 // collision with a copy that went wrong here, which no check of this rank sees).
 int HardsphereDomainWindow::compare_histories()
 {
@@ -933,7 +935,6 @@ int HardsphereDomainWindow::compare_histories()
       k += 2 + (size_t) hrecv[k + 1] * NEV;
     }
   }
-  blame.assign(comm->nprocs, 0);
   int conflicts = 0;
   double mine[NEV];
   for (int c = 0; c < ncopy; c++) {

@@ -34,11 +34,12 @@ class HardsphereDomainWindow : protected Pointers {
   // false: a conflict not repaired (or not checked for), nothing was changed (the caller redoes
   // the window gathered)
   bool run(double t0, double dt);
-  // the last window's repair: its rounds, and the ranks' windows redone in them (this rank's)
+  // the last window's repair: its rounds, and the ranks' windows redone in them (summed over
+  // the ranks and rounds, the same on every rank)
   int repair_rounds() const { return rounds; }
+  long windows_redone() const { return nredone; }
   // a guard failure made every rank widen in the last window's repair
   bool guard_widened() const { return all_widened; }
-  int redone_here() const { return nredone; }
   // the most repair rounds of one window (the shell of a rank widens by 2^rounds)
   static constexpr int MAX_ROUNDS = 12;
   // the core no longer holds what the last window left (something else used or changed it)
@@ -74,7 +75,7 @@ class HardsphereDomainWindow : protected Pointers {
   void influence_times();
   void publish_histories();
   int compare_histories();
-  bool checked(long *global);
+  bool checked(long *global, bool redid);
   bool repair(double dt, bool everyone);
   void commit();
   void sum_statistics();
@@ -111,7 +112,8 @@ class HardsphereDomainWindow : protected Pointers {
   bool blamed_here = false;      // a copy of an atom owned here was in conflict elsewhere
   std::vector<int> owner, blame, blamed;    // each copy's owner; ranks blamed, by and for this
   bool core_failed = false, guard_failed = false;
-  int rounds = 0, nredone = 0;   // the repair: rounds, windows this rank redid
+  int rounds = 0;                // the repair's rounds
+  long nredone = 0;              // and the windows redone in them, over all ranks
   std::vector<PlannedKick> kplan; // the window's kicks
   double s2lim = 0.0;            // squared speed above which the core lists an atom (guard)
   std::vector<double> bb;        // every rank's bounding box
