@@ -7,6 +7,7 @@
 #include "core/event_driven.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <random>
 #include <vector>
 
@@ -42,6 +43,11 @@ inline double build(EventDriven &ed, int dim, long n, double phi, double cell, u
   EDOptions o;
   o.dim = dim;
   o.cell_width = cell;    // (diameter 1)
+  // how candidates are found, for measurements of either way (EDOptions::neighbours, list_skin):
+  // GRANFRIC_NEIGHBOURS = 0 (automatic, the default), 1 (cells), 2 (neighbour lists);
+  // GRANFRIC_SKIN = the lists' skin in diameters (0: automatic)
+  if (const char *nm = std::getenv("GRANFRIC_NEIGHBOURS")) o.neighbours = std::atoi(nm);
+  if (const char *sk = std::getenv("GRANFRIC_SKIN")) o.list_skin = std::atof(sk);
   for (int d = 0; d < 3; d++) {
     o.lo[d] = 0.0;
     o.hi[d] = (d < dim) ? side : 1.0;

@@ -982,6 +982,52 @@ TEST(Prediction, PairContactTime)
   EXPECT_LT(tau, 3.0);
 }
 
+// With a horizon a contact time is either the one without (bit for bit) or NEVER, and NEVER only
+// where the contact without a horizon comes at or after the horizon: horizons around the
+// contact time itself (up to a few roundings away) and far from it, 3d and 2d, head-on pairs
+// near touching (where the lower bound the horizon uses is nearly the root) and others
+TEST(Prediction, PairContactTimeHorizonOnlyDropsLaterContacts)
+{
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  long pruned = 0, kept = 0, tight = 0;
+  for (int k = 0; k < 200000; k++) {
+    const double sigma = 1.0 + 0.5 * u(rng);
+    // (from 4 sigma apart down to near touching, where the bound is within 1e-7 of the root)
+    std::uniform_int_distribution<int> pick(0, 7);
+    const double d = sigma * (1.0 + 4.0 * std::pow(10.0, -pick(rng)) * std::fabs(u(rng)));
+    const double spread = pick(rng) % 2 ? 0.01 : 1.0;    // nearly head-on, or anything
+    const Vec3 r(d, spread * u(rng) * d, spread * u(rng) * d);
+    const Vec3 v(-std::fabs(u(rng)) - 1e-3, spread * u(rng), spread * u(rng));
+    const double z = 0.3 * sigma * u(rng);    // (2d: a constant z distance)
+    const double f3 = pair_contact_time<3>(r.x, r.y, r.z, v.x, v.y, v.z, sigma);
+    const double f2 = pair_contact_time<2>(r.x, r.y, z, v.x, v.y, 0.0, sigma);
+    for (const double f : {f3, f2}) {
+      if (f == NEVER) continue;
+      // around the contact (0.1 ... 1e-15 of it away), or around where a contact starts to
+      // be dropped: the lower bound c / (-2 b) (a few roundings and the margin away)
+      const double scale = std::pow(10.0, -2 * pick(rng) - 1);
+      const bool in3 = f == f3;
+      const double b = in3 ? dot(r, v) : r.x * v.x + r.y * v.y;
+      const double c = (in3 ? norm2(r) : r.x * r.x + r.y * r.y + z * z) - sigma * sigma;
+      const double horizon = pick(rng) % 2 ? f * (1.0 + scale * u(rng)) : c / (-2.0 * b) * (1.0 + 2e-9 * u(rng));
+      const double h = in3 ? pair_contact_time<3>(r.x, r.y, r.z, v.x, v.y, v.z, sigma, horizon)
+                               : pair_contact_time<2>(r.x, r.y, z, v.x, v.y, 0.0, sigma, horizon);
+      if (h == NEVER) {
+        ASSERT_GE(f, horizon) << "k " << k;
+        pruned++;
+        tight += horizon > f * (1.0 - 1e-4);
+      } else {
+        ASSERT_EQ(h, f) << "k " << k;
+        kept++;
+      }
+    }
+  }
+  EXPECT_GT(pruned, 10000);
+  EXPECT_GT(kept, 10000);
+  EXPECT_GT(tight, 1000);    // dropped within 1e-4 of the horizon
+}
+
 TEST(Prediction, CrossingTime)
 {
   EXPECT_DOUBLE_EQ(crossing_time(0.0, 2.0, 0.0, 1.0, +1), 0.5);

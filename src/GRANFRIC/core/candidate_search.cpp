@@ -12,56 +12,56 @@ namespace granfric {
 
 // collision candidates of i among the particles of the cells at offsets dlo..dhi (inclusive)
 // around its cell; periodic images by integer offsets
-void EventDriven::scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+void EventDriven::scan(int i, const int dlo[3], const int dhi[3])
 {
-  scan_in<false>(i, xi, vi, dlo, dhi);
+  scan_in<false>(i, dlo, dhi);
 }
 
-void EventDriven::scan_full(int i, const Vec3 &xi, const Vec3 &vi)
+void EventDriven::scan_full(int i)
 {
   static const int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};    // (in 2d z is not scanned)
-  scan_in<true>(i, xi, vi, lo, hi);
+  scan_in<true>(i, lo, hi);
 }
 
 template <bool FULL>
-void EventDriven::scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+void EventDriven::scan_in(int i, const int dlo[3], const int dhi[3])
 {
   if (opt.dim == 2) {
     if (has_gravity)
-      scan_t<2, true, FULL>(i, xi, vi, dlo, dhi);
+      scan_t<2, true, FULL>(i, dlo, dhi);
     else
-      scan_t<2, false, FULL>(i, xi, vi, dlo, dhi);
+      scan_t<2, false, FULL>(i, dlo, dhi);
   } else {
     if (has_gravity)
-      scan_t<3, true, FULL>(i, xi, vi, dlo, dhi);
+      scan_t<3, true, FULL>(i, dlo, dhi);
     else
-      scan_t<3, false, FULL>(i, xi, vi, dlo, dhi);
+      scan_t<3, false, FULL>(i, dlo, dhi);
   }
 }
 
-// The contact time of i and j at the image shift o (j's position + o P), canonical: from both
-// stored states at tr = max(t_i, t_j) (the arithmetic of pos() and vel()), whoever predicts the
-// pair and whenever; not before now. Usually i is the later one (it has just collided): its
-// stored state is then its state at tr. Seen from j (shift -o) it is the same number: the
-// differences change sign exactly.
+// The contact time of a particle in stored state p and one in stored state q at the image shift
+// o (q's position + o P), canonical: from both stored states at tr = max(t_p, t_q) (the
+// arithmetic of pos() and vel()), whoever predicts the pair and whenever; not before now.
+// Usually p is the later one (it has just collided): its stored state is then its state at tr.
+// Seen from q (shift -o) it is the same number: the differences change sign exactly. NEVER also
+// for a contact that certainly comes at or after before (see pair_contact_time's horizon).
 template <int DIM, bool GRAV>
-inline __attribute__((always_inline)) double EventDriven::pair_time(int i, int j, int o0, int o1,
-                                                                    int o2) const
+inline __attribute__((always_inline)) double EventDriven::contact(const Hot &p, const Hot &q, int o0,
+                                                                  int o1, int o2, double before) const
 {
-  const Hot &q = H[j], &p = H[i];
   const Vec3 g = opt.gravity;
-  double tr, a0, a1, a2, u0, u1, u2;    // i at tr
+  double tr, a0, a1, a2, u0, u1, u2;    // p at tr
   if (q.t <= p.t) {
     tr = p.t;
     a0 = p.x.x, a1 = p.x.y, a2 = p.x.z;
     u0 = p.v.x, u1 = p.v.y, u2 = p.v.z;
   } else {
     tr = q.t;
-    const Vec3 xa = pos(i, tr), va = vel(i, tr);
+    const Vec3 xa = flight_x(p.x, p.v, tr - p.t, g, has_gravity), va = flight_v(p.v, tr - p.t, g);
     a0 = xa.x, a1 = xa.y, a2 = xa.z;
     u0 = va.x, u1 = va.y, u2 = va.z;
   }
-  const double dtj = tr - q.t;    // j at tr
+  const double dtj = tr - q.t;    // q at tr
   double b0 = q.x.x + dtj * q.v.x, b1 = q.x.y + dtj * q.v.y;
   double b2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
   double w0 = q.v.x, w1 = q.v.y, w2 = DIM == 3 ? q.v.z : 0.0;
@@ -82,32 +82,51 @@ inline __attribute__((always_inline)) double EventDriven::pair_time(int i, int j
     r1 -= o1 * P.y;
     if (DIM == 3) r2 -= o2 * P.z;
   }
-  const double t = tr + pair_contact_time<DIM>(r0, r1, r2, u0 - w0, u1 - w1,
-                                               DIM == 3 ? u2 - w2 : 0.0, p.a + q.a);
+  const double tau = pair_contact_time<DIM>(r0, r1, r2, u0 - w0, u1 - w1, DIM == 3 ? u2 - w2 : 0.0,
+                                            p.a + q.a, before - tr);
+  if (tau == NEVER) return NEVER;
+  const double t = tr + tau;
   return t < now ? now : t;
 }
 
-// one candidate j of i at the image shift o (j's position + o P): its contact time, kept as
-// i's collision candidate when it is the earliest so far (i's state xi, vi now, its radius pa)
 template <int DIM, bool GRAV>
-inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, const Vec3 &xi,
-                                                              const Vec3 &vi, double pa, int j,
-                                                              int o0, int o1, int o2)
+double EventDriven::pair_time(int i, int j, int o0, int o1, int o2) const
 {
-  (void) xi, (void) vi, (void) pa;
-  const double t = pair_time<DIM, GRAV>(i, j, o0, o1, o2);
-  if (t < s.ct) {
+  return contact<DIM, GRAV>(H[i], H[j], o0, o1, o2, NEVER);
+}
+
+// One candidate j at the image shift o (j's position + o P): kept as the seeker's best when its
+// contact time is the earliest so far
+template <int DIM, bool GRAV>
+inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, int o0, int o1, int o2)
+{
+  const double t = contact<DIM, GRAV>(k.p, H[j], o0, o1, o2, k.t);
+  if (t < k.t) {
     // two particles whose last collisions were with each other (same periodic image)
     // separate in free flight: relative motion is a straight line, they are no candidates
     // (tested only here, for a would-be candidate: the same outcome as skipping them)
-    if (separating(i, j, o0, o1, o2)) return;
-    s.ct = t;
-    s.cpartner = j;
-    s.ccount = C[j].ncoll;
-    s.coff[0] = o0;
-    s.coff[1] = o1;
-    s.coff[2] = o2;
+    if (separating(k.i, j, o0, o1, o2)) return;
+    k.t = t;
+    k.j = j;
+    k.o[0] = o0, k.o[1] = o1, k.o[2] = o2;
   }
+}
+
+// a scan of i from its schedule's candidate so far, and the scan's best candidate back into it
+inline EventDriven::Seek EventDriven::seek(int i) const
+{
+  const Sched &s = S[i];
+  return Seek{H[i], s.ct, i, -1, {0, 0, 0}};
+}
+
+inline void EventDriven::settle(const Seek &k)
+{
+  if (k.j < 0) return;
+  Sched &s = S[k.i];
+  s.ct = k.t;
+  s.cpartner = k.j;
+  s.ccount = C[k.j].ncoll;
+  s.coff[0] = k.o[0], s.coff[1] = k.o[1], s.coff[2] = k.o[2];
 }
 
 // scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,
@@ -116,12 +135,11 @@ inline __attribute__((always_inline)) void EventDriven::offer(int i, Sched &s, c
 // z distance, and every operation left is the one of the 3d arithmetic in the same order, so
 // the contact times are the same numbers bit for bit.
 template <int DIM, bool GRAV, bool FULL>
-void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3])
+void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
 {
-  Sched &s = S[i];
-  const double pa = H[i].a;
+  Seek k = seek(i);
   const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
-  const int16_t *c = s.c;
+  const int16_t *c = S[i].c;
   const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
   const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
   const int x0 = FULL ? -1 : dlo[0], x1 = FULL ? 1 : dhi[0];
@@ -149,8 +167,8 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
       }
     for (int f = 0; f < nfirst; f++)
       for (int j = first[f]; j >= 0; j = IM[j].next)
-        if (j != i) offer<DIM, GRAV>(i, s, xi, vi, pa, j, pk[0] - IM[j].k[0], pk[1] - IM[j].k[1],
-                                     DIM == 3 ? pk[2] - IM[j].k[2] : 0);
+        if (j != i) offer<DIM, GRAV>(k, j, pk[0] - IM[j].k[0], pk[1] - IM[j].k[1], DIM == 3 ? pk[2] - IM[j].k[2] : 0);
+    settle(k);
     return;
   }
   for (int dz = zlo; dz <= zhi; dz++) {
@@ -167,22 +185,23 @@ void EventDriven::scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3]
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = img[j].next)
-          if (j != i) offer<DIM, GRAV>(i, s, xi, vi, pa, j, pk[0] + kx - img[j].k[0], pk[1] + ky - img[j].k[1],
-                                       DIM == 3 ? pk[2] + kz - img[j].k[2] : 0);
+          if (j != i) offer<DIM, GRAV>(k, j, pk[0] + kx - img[j].k[0], pk[1] + ky - img[j].k[1],
+                                      DIM == 3 ? pk[2] + kz - img[j].k[2] : 0);
       }
     }
   }
+  settle(k);
 }
 
 // collision candidates of i among its listed neighbours (no gravity with lists)
-void EventDriven::scan_list(int i, const Vec3 &xi, const Vec3 &vi)
+template <int DIM>
+void EventDriven::scan_list_t(int i)
 {
   // the cell shift of an entry's code, one per component
   static constexpr int8_t KX[27] = {-1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1};
   static constexpr int8_t KY[27] = {-1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1};
   static constexpr int8_t KZ[27] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1};
-  Sched &s = S[i];
-  const double pa = H[i].a;
+  Seek k = seek(i);
   const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
   const Entry *e = &NB[(size_t) i * LCAP];
   const int n = NN[i];
@@ -190,11 +209,17 @@ void EventDriven::scan_list(int i, const Vec3 &xi, const Vec3 &vi)
   for (int m = 0; m < n; m++) {
     const int j = entry_j(e[m]), c = (int) (e[m] & 31);
     const int *qk = IM[j].k;
-    if (opt.dim == 3)
-      offer<3, false>(i, s, xi, vi, pa, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], pk[2] + KZ[c] - qk[2]);
-    else
-      offer<2, false>(i, s, xi, vi, pa, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], 0);
+    offer<DIM, false>(k, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], DIM == 3 ? pk[2] + KZ[c] - qk[2] : 0);
   }
+  settle(k);
+}
+
+void EventDriven::scan_list(int i)
+{
+  if (opt.dim == 3)
+    scan_list_t<3>(i);
+  else
+    scan_list_t<2>(i);
 }
 
 long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) const

@@ -324,14 +324,14 @@ void EventDriven::cross(int i)
     // the stored collision candidate went stale: look at every neighbouring cell
     p.ct = NEVER;
     p.cpartner = -1;
-    scan_full(i, xi, vi);
+    scan_full(i);
   } else {
     // trajectory unchanged: only the layer of cells that just became adjacent is new
     const int zr = opt.dim == 3 ? 1 : 0;
     int dlo[3] = {-1, -1, -zr}, dhi[3] = {1, 1, zr};
     dlo[d] = dhi[d] = dir;
     if (nc[d] < 3) dlo[d] = -1, dhi[d] = 1;    // with fewer than 3 cells every cell is new
-    scan(i, xi, vi, dlo, dhi);
+    scan(i, dlo, dhi);
   }
   reschedule(i);
 }

@@ -158,9 +158,9 @@ void EventDriven::predict(int i, bool pairs)
   p.cpartner = -1;
   if (!pairs) return;
   if (lists)
-    scan_list(i, xi, vi);
+    scan_list(i);
   else
-    scan_full(i, xi, vi);
+    scan_full(i);
 }
 
 void EventDriven::collide_pair(int e)

@@ -574,7 +574,9 @@ class EventDriven {
   void list_rebuild(int i);              // the rebuild event
   void lists_to_cells();                 // after an overflow: cells from now on
   void predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi);
-  void scan_list(int i, const Vec3 &xi, const Vec3 &vi);
+  void scan_list(int i);
+  template <int DIM>
+  void scan_list_t(int i);
   void predict_all_lists();
   bool started = false;                  // start() done since resize()
   std::vector<int> dirty;                // external indices changed since the last window
@@ -638,17 +640,29 @@ class EventDriven {
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
   template <int DIM, bool GRAV>
   void predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi);
-  // collision candidates in the block of cells at offsets dlo..dhi
-  void scan(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
-  void scan_full(int i, const Vec3 &xi, const Vec3 &vi);    // offsets -1..1 in every dimension
+  // collision candidates in the block of cells at offsets dlo..dhi (from i's stored state)
+  void scan(int i, const int dlo[3], const int dhi[3]);
+  void scan_full(int i);    // offsets -1..1 in every dimension
   template <bool FULL>
-  void scan_in(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
+  void scan_in(int i, const int dlo[3], const int dhi[3]);
   template <int DIM, bool GRAV, bool FULL>
-  void scan_t(int i, const Vec3 &xi, const Vec3 &vi, const int dlo[3], const int dhi[3]);
-  // one candidate j of i (state xi, vi now) at the image shift o (j's position + o L)
+  void scan_t(int i, const int dlo[3], const int dhi[3]);
+  // a scan in progress: particle i's stored state (read once), its best candidate so far
+  // (time t, partner j, image shift o; j = -1: the schedule's candidate stands)
+  struct Seek {
+    Hot p;
+    double t;
+    int i, j, o[3];
+  };
+  Seek seek(int i) const;            // from i's schedule
+  void settle(const Seek &k);        // the best candidate into i's schedule
+  // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV>
-  void offer(int i, Sched &s, const Vec3 &xi, const Vec3 &vi, double pa, int j, int o0, int o1,
-             int o2);
+  void offer(Seek &k, int j, int o0, int o1, int o2);
+  // the canonical contact time of stored states p and q at the image shift o (q's position +
+  // o P), >= now; NEVER also where it is certainly >= before
+  template <int DIM, bool GRAV>
+  double contact(const Hot &p, const Hot &q, int o0, int o1, int o2, double before) const;
   // the canonical contact time of i and j at the image shift o (j's position + o P), >= now
   template <int DIM, bool GRAV>
   double pair_time(int i, int j, int o0, int o1, int o2) const;

@@ -81,7 +81,7 @@ bool EventDriven::list_build(int i, bool higher_only)
   const Vec3 c = XN[i];
   const int *pk = img[i].k;
   const int16_t *cc = S[i].c;
-  Entry found[LCAP];
+  Entry found[LCAP + 1];
   int nf = 0;
   const int zr = opt.dim == 3 ? 1 : 0;
   for (int dz = -zr; dz <= zr; dz++)
@@ -104,9 +104,11 @@ bool EventDriven::list_build(int i, bool higher_only)
           Vec3 xj = XN[j];
           const int o0 = pk[0] + k[0] - qk[0], o1 = pk[1] + k[1] - qk[1], o2 = pk[2] + k[2] - qk[2];
           if (o0 | o1 | o2) xj += Vec3(o0 * P.x, o1 * P.y, o2 * P.z);
-          if (norm2(c - xj) >= lrad2) continue;
-          if (nf == LCAP || NN[j] == LCAP) return false;
-          found[nf++] = make_entry(j, k[0], k[1], k[2]);
+          // (written always, kept if near: whether a particle of the 3^d cells is near is a
+          // coin toss for a branch)
+          found[nf] = make_entry(j, k[0], k[1], k[2]);
+          nf += norm2(c - xj) < lrad2;
+          if (nf > LCAP) return false;
         }
       }
   if (NN[i] + nf > LCAP) return false;

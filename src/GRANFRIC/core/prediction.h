@@ -18,18 +18,28 @@ constexpr double NEVER = std::numeric_limits<double>::infinity();
 // Earliest tau >= 0 at which |r + v tau| = sigma with the pair approaching (r.v < 0); NEVER if
 // none. A pair that already overlaps and approaches gets tau = 0. Components given one by one;
 // in 2d (DIM = 2) the relative velocity has no z component and r2 is a constant z distance.
+//
+// horizon: NEVER is also returned for a contact that certainly comes at tau >= horizon, known
+// from a lower bound of the root before the root is taken (the scans ask for contacts earlier
+// than the best candidate so far). A contact that is returned is the same number for any
+// horizon. The bound: with c = r^2 - sigma^2 > 0 and b = r.v < 0 the root tau = c / (-b +
+// sqrt(b^2 - v^2 c)) is at least c / (-2 b), and as computed at least that much less 10 roundings
+// (the square root's argument never exceeds b^2 as rounded); the margin 1e-9 covers them and
+// the rounding of the horizon, so a pruned contact would have come out >= horizon.
 template <int DIM>
 inline double pair_contact_time(double r0, double r1, double r2, double v0, double v1, double v2,
-                                double sigma)
+                                double sigma, double horizon = NEVER)
 {
   const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
-  const double w2 = DIM == 3 ? v0 * v0 + v1 * v1 + v2 * v2 : v0 * v0 + v1 * v1;
   const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
+  // Few branches: whether a candidate approaches (b < 0) is a coin toss, which a branch
+  // predictor gets wrong about half the time; one branch asks whether it approaches soon enough
+  const bool soon = (b < 0.0) & !(c > (-2.0 * b) * horizon * (1.0 + 1e-9));
+  if (!soon) return NEVER;
+  const double w2 = DIM == 3 ? v0 * v0 + v1 * v1 + v2 * v2 : v0 * v0 + v1 * v1;
   const double disc = b * b - w2 * c;
-  // Without branches: whether a candidate approaches (b < 0) and meets (disc >= 0) is a coin
-  // toss, which a branch predictor gets wrong about half the time. The root is computed for
-  // every candidate (from a harmless operand where there is none) and the answer selected.
-  const bool meet = (b < 0.0) & (disc >= 0.0);
+  // (the root from a harmless operand where there is none, and the answer selected)
+  const bool meet = disc >= 0.0;
   const double tau = c / (-b + std::sqrt(meet ? disc : 1.0));    // stable form of (-b - sqrt(disc))/v2
   return meet ? (tau > 0.0 ? tau : 0.0) : NEVER;
 }
