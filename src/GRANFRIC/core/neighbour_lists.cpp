@@ -17,10 +17,10 @@ namespace granfric {
 
 // Lists pay in small dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to
 // about 12000 particles. Measured with bench_core against cells, elastic spheres at fraction
-// 0.45 (bench/README.md): 20 - 25 % faster at N = 4000 - 10000, with 37 % fewer instructions
-// per collision; 10 - 20 % slower at N = 32000, where the lists (about 150 more bytes per
-// particle) push the particles' records out of this machine's cache. At fraction 0.35 the
-// rebuilds cost as much as the shorter scans save; in 2d cells are cheaper.
+// 0.45 (bench/README.md): 10 - 20 % faster at N = 4000 - 11000, with 37 % fewer instructions
+// per collision; 5 - 10 % slower at N = 32000, where the lists' records (about 150 more bytes
+// per particle) outgrow the cache one process gets here. At fraction 0.35 the rebuilds cost
+// more than the shorter scans save; in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
   return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= 12000;
