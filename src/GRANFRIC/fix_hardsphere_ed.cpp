@@ -537,7 +537,7 @@ void FixHardsphereED::store_state(int i, int e, const double *off, double partne
   xs[XS_TLAST] = p.t_last;
 }
 
-bool FixHardsphereED::state_holds(int i, double T0)
+bool FixHardsphereED::state_holds(int i, double T0, const hardsphere::FarWrap &wrap)
 {
   double *xs = xstate[i];
   if (std::isnan(xs[XS_T])) return false;
@@ -546,7 +546,6 @@ bool FixHardsphereED::state_holds(int i, double T0)
   const double dt = T0 - xs[XS_T];
   const granfric::Vec3 xw = granfric::EventDriven::flight_x(x, v, dt, g, granfric::norm2(g) != 0.0);
   const granfric::Vec3 vw = granfric::EventDriven::flight_v(v, dt, g);
-  const hardsphere::FarWrap wrap(domain);
   for (int d = 0; d < 3; d++) {
     if (atom->v[i][d] != vw[d]) return false;
     int off = (int) xs[XS_OFF + d];

@@ -32,6 +32,9 @@ FixStyle(hardsphere/ed,FixHardsphereED);
 #include <vector>
 
 namespace LAMMPS_NS {
+namespace hardsphere {
+class FarWrap;
+}
 
 class FixHardsphereED : public Fix {
  public:
@@ -162,7 +165,7 @@ class FixHardsphereED : public Fix {
   void store_state(int i, int e, const double *off, double partner);
   // does owned atom i still hold what the last window wrote (its state at epoch time T0)?
   // LAMMPS may have wrapped it into the box: its periods follow
-  bool state_holds(int i, double T0);
+  bool state_holds(int i, double T0, const hardsphere::FarWrap &wrap);
   class PairHardsphere *pair;
 
   granfric::EventDriven ed;

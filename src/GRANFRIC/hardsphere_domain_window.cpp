@@ -146,7 +146,6 @@ bool HardsphereDomainWindow::run(double t0, double dt)
 void HardsphereDomainWindow::simulate(double dt)
 {
   find_copies();
-  order_by_id();
   load_core();
   watch_events();
   core_failed = !advance();
@@ -220,7 +219,8 @@ bool HardsphereDomainWindow::new_epoch(double t0)
 {
   int due = fix.epoch_starts() || atom->natoms != last_natoms ? 1 : 0;
   const double start = fix.epoch_time(update->ntimestep - 1);
-  for (int i = 0; i < nlocal && !due; i++) due = fix.state_holds(i, start) ? 0 : 1;
+  const hardsphere::FarWrap wrap(domain);
+  for (int i = 0; i < nlocal && !due; i++) due = fix.state_holds(i, start, wrap) ? 0 : 1;
   MPI_Allreduce(MPI_IN_PLACE, &due, 1, MPI_INT, MPI_MAX, world);
   last_natoms = atom->natoms;
   if (!due) return false;
@@ -477,7 +477,27 @@ void HardsphereDomainWindow::order_by_id()
   if (same) return;
   aorder.resize(n);
   for (int a = 0; a < n; a++) aorder[a] = a;
-  std::sort(aorder.begin(), aorder.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
+  sort_by_id(aorder);
+}
+
+void HardsphereDomainWindow::sort_by_id(std::vector<int> &atoms)
+{
+  // usually (IDs below 2^32) each atom's ID and index packed in one integer, sorted as numbers:
+  // several times cheaper than a sort that reads the IDs through the atom arrays
+  const size_t n = atoms.size();
+  akeys.resize(n);
+  bool packed = true;
+  for (size_t k = 0; k < n; k++) {
+    const long t = tag_of(atoms[k]);
+    packed = packed && t >= 0 && t < (1L << 32);
+    akeys[k] = (uint64_t) t << 32 | (uint32_t) atoms[k];
+  }
+  if (!packed) {
+    std::sort(atoms.begin(), atoms.end(), [&](int a, int b) { return tag_of(a) < tag_of(b); });
+    return;
+  }
+  std::sort(akeys.begin(), akeys.end());
+  for (size_t k = 0; k < n; k++) atoms[k] = (int) (akeys[k] & 0xffffffffu);
 }
 
 // atom a of this window: an owned atom (a < nlocal), or a copy as its owner sent it
@@ -595,9 +615,15 @@ void HardsphereDomainWindow::keep_core()
     smask[sl] = 0;
     free_slots.push_back(sl);
   }
-  // (first every atom's slot, so that last partners can be found)
-  for (int a : aorder) {
-    if (inslot[a] >= 0) continue;
+  // (first every atom's slot, so that last partners can be found; new atoms take the free
+  // slots in the order of their IDs, the others keep theirs: the slots do not depend on the
+  // order in which LAMMPS stores the atoms)
+  const int n = nlocal + nghost;
+  anew.clear();
+  for (int a = 0; a < n; a++)
+    if (inslot[a] < 0) anew.push_back(a);
+  sort_by_id(anew);
+  for (int a : anew) {
     const long t = tag_of(a);
     const int sl = free_slots.back();
     free_slots.pop_back();
@@ -608,7 +634,7 @@ void HardsphereDomainWindow::keep_core()
   cslot.clear();
   sowned.assign(ed.size(), 0);
   lslot.resize(nlocal);
-  for (int a : aorder) {
+  for (int a = 0; a < n; a++) {
     const int sl = inslot[a];
     const AtomRecord in = record_of(a);
     int f[3];
@@ -643,6 +669,7 @@ void HardsphereDomainWindow::keep_core()
 // windows; the cell grid covers this window's region and a margin W
 void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o)
 {
+  order_by_id();
   const Region &R = reg[comm->me];
   cslot.clear();
   for (int d = 0; d < 3; d++) {

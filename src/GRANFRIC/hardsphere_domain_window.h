@@ -68,6 +68,7 @@ class HardsphereDomainWindow : protected Pointers {
   void simulate(double dt);    // find_copies ... influence_times
   void find_copies();
   void order_by_id();
+  void sort_by_id(std::vector<int> &atoms);    // atoms (indices) in the order of their IDs
   void load_core();
   void watch_events();
   bool advance();
@@ -138,6 +139,8 @@ class HardsphereDomainWindow : protected Pointers {
   std::vector<int> sseen;                       // slot matched in this window (stamp)
   int stamp = 0;
   std::vector<int> aorder;                      // the window's atoms in the order of their IDs
+  std::vector<int> anew;                        // atoms without a slot (keep_core)
+  std::vector<uint64_t> akeys;                  // (sort_by_id: ID and atom packed, sorted)
 
   // ---- scratch of every window, kept to spare their allocation: atoms sent (flags and
   // list), the slot of each atom, the copies' slots, their records in drecv and image shifts,
