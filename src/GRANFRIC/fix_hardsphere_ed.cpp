@@ -113,8 +113,8 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
 
   // per-atom arrays (LAMMPS takes callbacks only from a fix's constructor): the last collision
   // times, kept only for the TC model, and the tallies, allocated when first asked for
-  atom->add_callback(Atom::GROW);
-  if (tc > 0.0) atom->add_callback(Atom::RESTART);
+  atom->add_callback(host::GROW);
+  if (tc > 0.0) atom->add_callback(host::RESTART);
   if (parallel == DOMAIN && comm->nprocs > 1) memory->create(xstate, 1, XS_SIZE, "hardsphere/ed:xstate");
   FixHardsphereED::grow_arrays(atom->nmax);
   maxexchange = (tlast ? 1 : 0) + (xstate ? XS_SIZE : 0);
@@ -136,8 +136,8 @@ FixHardsphereED::~FixHardsphereED()
   if (copymode) return;
   delete gwin;
   delete dwin;
-  if (tlast) atom->delete_callback(id, Atom::RESTART);
-  atom->delete_callback(id, Atom::GROW);
+  if (tlast) atom->delete_callback(id, host::RESTART);
+  atom->delete_callback(id, host::GROW);
   memory->destroy(tlast);
   memory->destroy(atally);
   memory->destroy(xstate);
@@ -145,10 +145,10 @@ FixHardsphereED::~FixHardsphereED()
 
 FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, const char *who)
 {
-  auto *f = lmp->modify->get_fix_by_id(id);
-  if (!f) lmp->error->all(FLERR, "{}: fix ID {} does not exist", who, id);
+  auto *f = host::fix_by_id(lmp->modify, id);
+  if (!f) host::errors(lmp)->all(FLERR, "{}: fix ID {} does not exist", who, id);
   auto *ed = dynamic_cast<FixHardsphereED *>(f);
-  if (!ed) lmp->error->all(FLERR, "{}: fix {} is of style {}, not hardsphere/ed", who, id, f->style);
+  if (!ed) host::errors(lmp)->all(FLERR, "{}: fix {} is of style {}, not hardsphere/ed", who, id, f->style);
   return ed;
 }
 
@@ -209,7 +209,7 @@ void FixHardsphereED::init()
                "is the window in which the atoms move forward", update->dt);
   // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), but
   // no fix may change the box (deform, barostats)
-  for (const auto &f : modify->get_fix_list())
+  for (const auto &f : host::fixes(modify))
     if (f->box_change)
       error->all(FLERR, "Fix hardsphere/ed does not support a box changed during the run (fix {} "
                  "{})", f->id, f->style);
@@ -219,7 +219,7 @@ void FixHardsphereED::init()
     nlevels_respa = (dynamic_cast<Respa *>(update->integrate))->nlevels;
   kicks.clear();
   walls.clear();
-  for (const auto &f : modify->get_fix_list()) {
+  for (const auto &f : host::fixes(modify)) {
     if (f == this) continue;
     if (auto *k = dynamic_cast<HardsphereDriving *>(f)) kicks.push_back(k);
     if (auto *w = dynamic_cast<HardsphereWallPart *>(f)) walls.push_back(w);

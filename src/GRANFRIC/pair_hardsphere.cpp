@@ -130,7 +130,7 @@ static double parse_value(const std::string &who, const char *name, const char *
   std::string v = utils::lowercase(s);
   if (allow_inf && (v == "inf" || v == "infinity")) return INF;
   if (!utils::is_double(v))
-    lmp->error->all(FLERR, "{}: {} = {} is not a number{}", who, name, s,
+    host::errors(lmp)->all(FLERR, "{}: {} = {} is not a number{}", who, name, s,
                     allow_inf ? " (nor inf)" : "");
   return utils::numeric(FLERR, v, false, lmp);
 }

@@ -27,12 +27,16 @@ PairStyle(hardsphere/jz,PairHardsphereJZ);
 #include "pair.h"
 
 #include "collision.h"
+#include "host_compat.h"
 
 #include <string>
 
 namespace LAMMPS_NS {
 
 class PairHardsphere : public Pair {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   // number of single() extra values, see single()
   static constexpr int NSINGLE = 8;
