@@ -15,7 +15,7 @@
 using namespace LAMMPS_NS;
 
 ComputeHardsphereAtom::ComputeHardsphereAtom(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), fix(nullptr), nmax(0)
+    GRANFRIC_COMPUTE_BASE(lmp, narg, arg), fix(nullptr), nmax(0)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "compute hardsphere/atom", error);
   if (narg > 4)

@@ -19,12 +19,16 @@ ComputeStyle(hardsphere/atom,ComputeHardsphereAtom);
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_ATOM_H
 
 #include "compute.h"
+#include "host_compat.h"
 
 #include <string>
 
 namespace LAMMPS_NS {
 
 class ComputeHardsphereAtom : public Compute {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   enum { NCOL = 6 };
   ComputeHardsphereAtom(class LAMMPS *, int, char **);

@@ -20,7 +20,7 @@
 using namespace LAMMPS_NS;
 
 ComputeHardsphereCollisions::ComputeHardsphereCollisions(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), fix(nullptr), nbins(36), seen_time(0.0), computed_step(-1)
+    GRANFRIC_COMPUTE_BASE(lmp, narg, arg), fix(nullptr), nbins(36), seen_time(0.0), computed_step(-1)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "compute hardsphere/collisions", error);
   fixid = arg[3];

@@ -22,12 +22,16 @@ ComputeStyle(hardsphere/collisions,ComputeHardsphereCollisions);
 #include "compute.h"
 
 #include "event_driven.h"
+#include "host_compat.h"
 
 #include <string>
 
 namespace LAMMPS_NS {
 
 class ComputeHardsphereCollisions : public Compute {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   ComputeHardsphereCollisions(class LAMMPS *, int, char **);
   ~ComputeHardsphereCollisions() override;

@@ -20,7 +20,7 @@ using namespace LAMMPS_NS;
 
 ComputeHardsphereCollisionsLocal::ComputeHardsphereCollisionsLocal(LAMMPS *lmp, int narg,
                                                                    char **arg) :
-    Compute(lmp, narg, arg), fix(nullptr), nmax(0)
+    GRANFRIC_COMPUTE_BASE(lmp, narg, arg), fix(nullptr), nmax(0)
 {
   if (narg < 4) utils::missing_cmd_args(FLERR, "compute hardsphere/collisions/local", error);
   if (narg > 4)

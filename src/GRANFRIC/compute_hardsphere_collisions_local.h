@@ -19,12 +19,16 @@ ComputeStyle(hardsphere/collisions/local,ComputeHardsphereCollisionsLocal);
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_COLLISIONS_LOCAL_H
 
 #include "compute.h"
+#include "host_compat.h"
 
 #include <string>
 
 namespace LAMMPS_NS {
 
 class ComputeHardsphereCollisionsLocal : public Compute {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   enum { NCOL = 10 };
   ComputeHardsphereCollisionsLocal(class LAMMPS *, int, char **);

@@ -16,7 +16,7 @@
 using namespace LAMMPS_NS;
 
 ComputeHardsphereConvection::ComputeHardsphereConvection(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg)
+    GRANFRIC_COMPUTE_BASE(lmp, narg, arg)
 {
   if (narg != 3)
     error->all(FLERR, "Compute hardsphere/convection takes no arguments after the style name "

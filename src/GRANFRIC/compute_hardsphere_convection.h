@@ -16,10 +16,14 @@ ComputeStyle(hardsphere/convection,ComputeHardsphereConvection);
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_CONVECTION_H
 
 #include "compute.h"
+#include "host_compat.h"
 
 namespace LAMMPS_NS {
 
 class ComputeHardsphereConvection : public Compute {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   ComputeHardsphereConvection(class LAMMPS *, int, char **);
   ~ComputeHardsphereConvection() override;

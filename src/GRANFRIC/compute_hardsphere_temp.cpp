@@ -23,7 +23,7 @@
 using namespace LAMMPS_NS;
 
 ComputeHardsphereTemp::ComputeHardsphereTemp(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), qshape(-1.0), qused(0.4)
+    GRANFRIC_COMPUTE_BASE(lmp, narg, arg), qshape(-1.0), qused(0.4)
 {
   int iarg = 3;
   while (iarg < narg) {

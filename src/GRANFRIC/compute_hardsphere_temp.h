@@ -17,10 +17,14 @@ ComputeStyle(hardsphere/temp,ComputeHardsphereTemp);
 #define LMP_GRANFRIC_COMPUTE_HARDSPHERE_TEMP_H
 
 #include "compute.h"
+#include "host_compat.h"
 
 namespace LAMMPS_NS {
 
 class ComputeHardsphereTemp : public Compute {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   ComputeHardsphereTemp(class LAMMPS *, int, char **);
   ~ComputeHardsphereTemp() override;

@@ -100,9 +100,7 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
 
   time_integrate = 1;
   // the collision virial of each step goes into LAMMPS's pressure (fix_modify virial no: not)
-  virial_global_flag = 1;
-  virial_peratom_flag = 1;
-  thermo_virial = 1;
+  GRANFRIC_FIX_VIRIAL;
   vector_flag = 1;
   size_vector = NVECTOR;
   global_freq = 1;
@@ -113,11 +111,11 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
 
   // per-atom arrays (LAMMPS takes callbacks only from a fix's constructor): the last collision
   // times, kept only for the TC model, and the tallies, allocated when first asked for
-  atom->add_callback(Atom::GROW);
-  if (tc > 0.0) atom->add_callback(Atom::RESTART);
+  atom->add_callback(host::GROW);
+  if (tc > 0.0) atom->add_callback(host::RESTART);
   if (parallel == DOMAIN && comm->nprocs > 1) memory->create(xstate, 1, XS_SIZE, "hardsphere/ed:xstate");
   FixHardsphereED::grow_arrays(atom->nmax);
-  maxexchange = (tlast ? 1 : 0) + (xstate ? XS_SIZE : 0);
+  GRANFRIC_MAXEXCHANGE((tlast ? 1 : 0) + (xstate ? XS_SIZE : 0));
 }
 
 // the place of value among the allowed values of keyword, or an error that lists them
@@ -133,11 +131,11 @@ int FixHardsphereED::choice(const char *keyword, const std::string &value,
 
 FixHardsphereED::~FixHardsphereED()
 {
-  if (copymode) return;
+  if (GRANFRIC_COPYMODE) return;
   delete gwin;
   delete dwin;
-  if (tlast) atom->delete_callback(id, Atom::RESTART);
-  atom->delete_callback(id, Atom::GROW);
+  if (tlast) atom->delete_callback(id, host::RESTART);
+  atom->delete_callback(id, host::GROW);
   memory->destroy(tlast);
   memory->destroy(atally);
   memory->destroy(xstate);
@@ -145,10 +143,10 @@ FixHardsphereED::~FixHardsphereED()
 
 FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, const char *who)
 {
-  auto *f = lmp->modify->get_fix_by_id(id);
-  if (!f) lmp->error->all(FLERR, "{}: fix ID {} does not exist", who, id);
+  auto *f = host::fix_by_id(lmp->modify, id);
+  if (!f) host::errors(lmp)->all(FLERR, "{}: fix ID {} does not exist", who, id);
   auto *ed = dynamic_cast<FixHardsphereED *>(f);
-  if (!ed) lmp->error->all(FLERR, "{}: fix {} is of style {}, not hardsphere/ed", who, id, f->style);
+  if (!ed) host::errors(lmp)->all(FLERR, "{}: fix {} is of style {}, not hardsphere/ed", who, id, f->style);
   return ed;
 }
 
@@ -163,7 +161,7 @@ void FixHardsphereED::request_atom_tallies()
   memory->create(atally, atom->nmax, NTALLY, "hardsphere/ed:atally");
   atally_n = 0;
   grow_arrays(atom->nmax);
-  maxexchange = (tlast ? 1 : 0) + (xstate ? XS_SIZE : 0) + NTALLY;
+  GRANFRIC_MAXEXCHANGE((tlast ? 1 : 0) + (xstate ? XS_SIZE : 0) + NTALLY);
 }
 
 void FixHardsphereED::post_force_respa(int vflag, int ilevel, int)
@@ -175,7 +173,7 @@ void FixHardsphereED::post_force_respa(int vflag, int ilevel, int)
 // global and per atom (the tallies hold each atom's share)
 void FixHardsphereED::post_force(int vflag)
 {
-  v_init(vflag);
+  GRANFRIC_V_INIT(vflag);
   for (int k = 0; k < 6; k++) virial[k] = wstep[k];
   if (!vflag_atom || !atally) return;
   const double scale = force->mvv2e / update->dt;
@@ -209,8 +207,8 @@ void FixHardsphereED::init()
                "is the window in which the atoms move forward", update->dt);
   // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), but
   // no fix may change the box (deform, barostats)
-  for (const auto &f : modify->get_fix_list())
-    if (f->box_change)
+  for (const auto &f : host::fixes(modify))
+    if (host::changes_box(f))
       error->all(FLERR, "Fix hardsphere/ed does not support a box changed during the run (fix {} "
                  "{})", f->id, f->style);
   // with run_style respa the window is the outermost step (collisions need no forces)
@@ -219,7 +217,7 @@ void FixHardsphereED::init()
     nlevels_respa = (dynamic_cast<Respa *>(update->integrate))->nlevels;
   kicks.clear();
   walls.clear();
-  for (const auto &f : modify->get_fix_list()) {
+  for (const auto &f : host::fixes(modify)) {
     if (f == this) continue;
     if (auto *k = dynamic_cast<HardsphereDriving *>(f)) kicks.push_back(k);
     if (auto *w = dynamic_cast<HardsphereWallPart *>(f)) walls.push_back(w);
@@ -312,7 +310,7 @@ void FixHardsphereED::check_walls_cross() const
       if (a.dim != b.dim || a.side > 0 || b.side < 0 || a.pos + a.A < b.pos) continue;
       error->all(FLERR, "Fix hardsphere/wall {} ({} at {}{}) is not below fix hardsphere/wall {} "
                  "({} at {}): the lower wall must lie below the upper one", lo->wall_id(), lo->face(),
-                 a.pos, a.A > 0.0 ? fmt::format(" + amplitude {}", a.A) : "", hi->wall_id(), hi->face(),
+                 a.pos, a.A > 0.0 ? host::format(" + amplitude {}", a.A) : "", hi->wall_id(), hi->face(),
                  b.pos);
     }
 }
@@ -626,7 +624,7 @@ void FixHardsphereED::resync_for_restart()
 
 void FixHardsphereED::initial_integrate(int vflag)
 {
-  v_init(vflag);    // (vflag_atom: LAMMPS needs per-atom virials at the end of this step)
+  GRANFRIC_V_INIT(vflag);    // (vflag_atom: LAMMPS needs per-atom virials at the end of this step)
   if (vflag_atom) request_atom_tallies();
   ed.tally_particles(atally != nullptr);
   const double dt = update->dt;

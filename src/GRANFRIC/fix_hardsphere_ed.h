@@ -26,6 +26,7 @@ FixStyle(hardsphere/ed,FixHardsphereED);
 
 #include "event_driven.h"
 #include "hardsphere_window_parts.h"
+#include "host_compat.h"
 
 #include <functional>
 #include <string>
@@ -37,6 +38,9 @@ class FarWrap;
 }
 
 class FixHardsphereED : public Fix {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   // output vector entries (every collision count includes wall collisions; WALL_COLLISIONS is
   // their part)

@@ -24,10 +24,14 @@ FixStyle(hardsphere/kick,FixHardsphereKick);
 
 #include "hardsphere_window_parts.h"
 #include "kicks.h"
+#include "host_compat.h"
 
 namespace LAMMPS_NS {
 
 class FixHardsphereKick : public Fix, public HardsphereDriving {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   FixHardsphereKick(class LAMMPS *, int, char **);
   int setmask() override;

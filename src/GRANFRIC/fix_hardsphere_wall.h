@@ -25,6 +25,7 @@ FixStyle(hardsphere/wall,FixHardsphereWall);
 #include "fix.h"
 
 #include "hardsphere_window_parts.h"
+#include "host_compat.h"
 
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ FixStyle(hardsphere/wall,FixHardsphereWall);
 namespace LAMMPS_NS {
 
 class FixHardsphereWall : public Fix, public HardsphereWallPart {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   FixHardsphereWall(class LAMMPS *, int, char **);
   int setmask() override;

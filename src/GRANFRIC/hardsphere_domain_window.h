@@ -19,6 +19,7 @@
 #include "event_driven.h"
 #include "hardsphere_window_parts.h"
 #include "id_map.h"
+#include "host_compat.h"
 
 #include <cstdint>
 #include <vector>
@@ -28,6 +29,9 @@ namespace LAMMPS_NS {
 class FixHardsphereED;
 
 class HardsphereDomainWindow : protected Pointers {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   explicit HardsphereDomainWindow(FixHardsphereED &fix);
   // one window [t0, t0 + dt) of the owned atoms, conflicts repaired among the ranks involved;

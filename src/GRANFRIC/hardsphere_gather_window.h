@@ -18,6 +18,7 @@
 #include "atom_record.h"
 
 #include "event_driven.h"
+#include "host_compat.h"
 
 #include <cstdint>
 #include <vector>
@@ -30,6 +31,9 @@ namespace hardsphere {
 }
 
 class HardsphereGatherWindow : protected Pointers {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   explicit HardsphereGatherWindow(FixHardsphereED &fix);
   // one window [t0, t0 + dt) of the whole system (redo: after a domain window's conflict)

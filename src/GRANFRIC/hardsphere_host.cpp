@@ -11,7 +11,7 @@
 #include "fix.h"
 #include "modify.h"
 #include "update.h"
-#include "utils.h"
+#include "host_compat.h"
 
 #include <limits>
 
@@ -25,9 +25,9 @@ namespace hardsphere {
 
   void require_ed(LAMMPS *lmp, const char *style, const char *id, const char *what)
   {
-    for (const auto &f : lmp->modify->get_fix_list())
+    for (const auto &f : host::fixes(lmp->modify))
       if (utils::strmatch(f->style, "^hardsphere/ed")) return;
-    lmp->error->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
+    host::errors(lmp)->all(FLERR, "Fix {} {} needs fix hardsphere/ed, which {}", style, id, what);
   }
 
   double parse_inertia(LAMMPS *lmp, const std::string &who, const std::string &value, bool &disc)
@@ -36,11 +36,11 @@ namespace hardsphere {
     if (value == "sphere") return 0.4;
     if (disc) return 0.5;
     if (!utils::is_double(value))
-      lmp->error->all(FLERR, "{} inertia must be sphere, disc or a number 0 < q <= 1, not {}", who,
+      host::errors(lmp)->all(FLERR, "{} inertia must be sphere, disc or a number 0 < q <= 1, not {}", who,
                       value);
     const double q = utils::numeric(FLERR, value, false, lmp);
     if (!(q > 0.0 && q <= 1.0))
-      lmp->error->all(FLERR, "{} inertia q = I/(m a^2) = {} is out of range (0 < q <= 1)", who, value);
+      host::errors(lmp)->all(FLERR, "{} inertia q = I/(m a^2) = {} is out of range (0 < q <= 1)", who, value);
     return q;
   }
 

@@ -46,7 +46,7 @@ PairHardsphere::PairHardsphere(LAMMPS *lmp, LawKind k) :
   single_extra = NSINGLE;
   svector = new double[NSINGLE];
   no_virial_fdotr_compute = 1;
-  finitecutflag = 1;
+  GRANFRIC_PAIR_FLAGS;
   restartinfo = 1;
   writedata = 1;
 }
@@ -90,7 +90,7 @@ void PairHardsphere::allocate()
 
 void PairHardsphere::compute(int eflag, int vflag)
 {
-  ev_init(eflag, vflag);
+  GRANFRIC_EV_INIT(eflag, vflag);
 }
 
 /* ----------------------------------------------------------------------
@@ -130,7 +130,7 @@ static double parse_value(const std::string &who, const char *name, const char *
   std::string v = utils::lowercase(s);
   if (allow_inf && (v == "inf" || v == "infinity")) return INF;
   if (!utils::is_double(v))
-    lmp->error->all(FLERR, "{}: {} = {} is not a number{}", who, name, s,
+    host::errors(lmp)->all(FLERR, "{}: {} = {} is not a number{}", who, name, s,
                     allow_inf ? " (nor inf)" : "");
   return utils::numeric(FLERR, v, false, lmp);
 }
@@ -202,7 +202,7 @@ void PairHardsphere::mix(int i, int j)
     raw[i][j][k] = (a == INF || b == INF) ? INF : 0.5 * (a + b);
   }
   set_law(i, j);
-  did_mix = true;
+  GRANFRIC_DID_MIX;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -261,9 +261,9 @@ void PairHardsphere::write_restart(FILE *fp)
     }
 }
 
-void PairHardsphere::read_restart(FILE *fp)
+void PairHardsphere::read_restart(GRANFRIC_RESTART_ARGS)
 {
-  read_restart_settings(fp);
+  read_restart_settings(GRANFRIC_RESTART_PASS);
   allocate();
   const int me = comm->me;
   for (int i = 1; i <= atom->ntypes; i++)
@@ -286,7 +286,7 @@ void PairHardsphere::write_restart_settings(FILE *fp)
   fwrite(&qshape, sizeof(double), 1, fp);
 }
 
-void PairHardsphere::read_restart_settings(FILE *fp)
+void PairHardsphere::read_restart_settings(GRANFRIC_RESTART_ARGS)
 {
   int kind = 0;
   if (comm->me == 0) {

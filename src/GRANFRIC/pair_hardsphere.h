@@ -27,12 +27,16 @@ PairStyle(hardsphere/jz,PairHardsphereJZ);
 #include "pair.h"
 
 #include "collision.h"
+#include "host_compat.h"
 
 #include <string>
 
 namespace LAMMPS_NS {
 
 class PairHardsphere : public Pair {
+ protected:
+  GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
+
  public:
   // number of single() extra values, see single()
   static constexpr int NSINGLE = 8;
@@ -46,9 +50,9 @@ class PairHardsphere : public Pair {
   void init_style() override;
   double init_one(int, int) override;
   void write_restart(FILE *) override;
-  void read_restart(FILE *) override;
+  void read_restart(GRANFRIC_RESTART_ARGS) override;
   void write_restart_settings(FILE *) override;
-  void read_restart_settings(FILE *) override;
+  void read_restart_settings(GRANFRIC_RESTART_ARGS) override;
   void write_data(FILE *) override;
   void write_data_all(FILE *) override;
   double single(int, int, int, int, double, double, double, double &) override;
