@@ -226,6 +226,12 @@ void FixHardsphereED::init()
                  "Fix {} (gravity) acts together with fix hardsphere/ed {}: use the gravity "
                  "keyword of fix hardsphere/ed instead",
                  f->id, id);
+    // (soft granular walls, LAMMPS's or LIGGGHTS's, and LIGGGHTS's meshes they use)
+    if (utils::strmatch(f->style, "^wall/gran") || utils::strmatch(f->style, "^mesh/surface"))
+      error->all(FLERR,
+                 "Fix {} ({}) is a soft granular wall, which the hard particles of fix "
+                 "hardsphere/ed {} do not feel: use fix hardsphere/wall",
+                 f->id, f->style, id);
     if (f->time_integrate)
       error->all(FLERR,
                  "Fix {} ({}) integrates the same atoms as fix hardsphere/ed {}: hard particles "

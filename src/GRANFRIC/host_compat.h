@@ -41,6 +41,8 @@ inline Fix *fix_by_id(Modify *modify, const std::string &id) { return modify->ge
 constexpr int GROW = Atom::GROW, RESTART = Atom::RESTART;
 // (a style class's member that stands for LAMMPS's error: none needed)
 #define GRANFRIC_HOST_ERROR
+// the command that makes ghost atoms carry velocities
+constexpr const char *GHOST_VELOCITY = "comm_modify vel yes";
 // a compute's base (LIGGGHTS's takes the index of the first argument after "ID group style")
 #define GRANFRIC_COMPUTE_BASE(lmp, narg, arg) Compute(lmp, narg, arg)
 // a fix that adds to the virial (global and per atom), and its per-step set-up
@@ -110,6 +112,7 @@ inline Fix *fix_by_id(Modify *modify, const std::string &id)
   return k < 0 ? nullptr : modify->fix[k];
 }
 constexpr int GROW = 0, RESTART = 1;    // (LIGGGHTS's callback flags)
+constexpr const char *GHOST_VELOCITY = "communicate single vel yes";
 
 // A message with {} placeholders (also {:g}, {:.Ng}, {:.Nf}) filled in order, as LAMMPS's fmt does
 // for what the styles print

@@ -215,8 +215,8 @@ void PairHardsphere::init_style()
                "(atom_style sphere)",
                law_style(lawkind));
   if (comm->ghost_velocity == 0)
-    error->all(FLERR, "Pair style {} requires ghost atoms to store velocity: use comm_modify vel yes",
-               law_style(lawkind));
+    error->all(FLERR, "Pair style {} requires ghost atoms to store velocity: use {}",
+               law_style(lawkind), host::GHOST_VELOCITY);
   if (inertia_style == DISC && domain->dimension != 2)
     error->all(FLERR, "Pair style {} inertia disc requires a 2d simulation (dimension 2)",
                law_style(lawkind));
