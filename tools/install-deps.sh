@@ -6,7 +6,7 @@
 set -euo pipefail
 pkgs=(cmake ninja-build g++ ccache xz-utils libopenmpi-dev openmpi-bin
       googletest libgtest-dev libgmock-dev libyaml-dev libyaml-cpp-dev
-      python3 python3-numpy python3-scipy python3-matplotlib python3-pytest python3-tqdm)
+      python3 python3-numpy python3-scipy python3-matplotlib python3-pytest python3-tqdm python3-yaml)
 # the LIGGGHTS host (tools/liggghts; GRANFRIC_LIGGGHTS=0: not wanted)
 [ "${GRANFRIC_LIGGGHTS:-1}" = 1 ] && pkgs+=(libliggghts-dev)
 missing=()

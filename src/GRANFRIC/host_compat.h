@@ -118,18 +118,26 @@ constexpr const char *GHOST_VELOCITY = "communicate single vel yes";
 // for what the styles print
 inline void put(std::ostringstream &o, const std::string &spec, double x)
 {
-  if (spec.empty()) {
-    char b[32];
-    for (int p = 1; p <= 17; p++) {    // the shortest form that reads back as x
-      std::snprintf(b, sizeof b, "%.*g", p, x);
-      if (std::strtod(b, nullptr) == x) break;
-    }
-    o << b;
-  } else {
-    char b[64];
+  char b[64];
+  if (!spec.empty()) {
     std::snprintf(b, sizeof b, ("%" + spec.substr(1)).c_str(), x);
     o << b;
+    return;
   }
+  if (!std::isfinite(x)) {
+    o << (std::isnan(x) ? "nan" : x > 0 ? "inf" : "-inf");
+    return;
+  }
+  // as fmt's {}: the fewest digits that read back as x, fixed notation for decimal exponents
+  // -4 ... 15, else exponential
+  int p = 0;
+  for (; p < 17; p++) {
+    std::snprintf(b, sizeof b, "%.*e", p, x);
+    if (std::strtod(b, nullptr) == x) break;
+  }
+  const int e = x == 0.0 ? 0 : std::atoi(std::strchr(b, 'e') + 1);
+  if (e >= -4 && e < 16) std::snprintf(b, sizeof b, "%.*f", p > e ? p - e : 0, x);
+  o << b;
 }
 template <class T>
 void put(std::ostringstream &o, const std::string &spec, const T &x)
