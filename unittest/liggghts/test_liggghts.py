@@ -8,7 +8,8 @@ also with LIGGGHTS's atom_style granular) run under both hosts
 from the same initial state, serially and on 2 ranks. Velocities and spins (dumped at %.17g) are
 the same bit for bit at the start and after 200 steps, so are the collision counts; positions
 as the hosts keep them agree to 1e-12 of the box (each host wraps atoms into the box with its
-own arithmetic, while the trajectory goes on from the fix's stored states). A bad keyword is
+own arithmetic, while the trajectory goes on from the fix's stored states). Under either host a
+run continued from a restart file ends where the writing run ends. A bad keyword is
 refused under LIGGGHTS with GRANFRIC's own message (LIGGGHTS 3.8 follows its error lines with a
 line of stray bytes, decoded leniently here).
 """
@@ -69,6 +70,21 @@ def test_same_trajectory_under_both_hosts(tmp_path, scene, np_):
         assert np.abs(a[:, 1:3] - b[:, 1:3]).max() <= 1e-12 * box.max()
     # (the dynamics did something: velocities changed)
     assert not np.array_equal(res[1][0][0][:, 3:5], res[1][200][0][:, 3:5])
+
+
+@pytest.mark.parametrize("liggghts", [0, 1])
+def test_restart_continues_as_the_writing_run(tmp_path, liggghts):
+    """A run that writes a restart file after 100 steps and goes on for 100 more, and a run
+    that reads the file and does the same 100 steps, end in the same state bit for bit (every
+    dumped number), under either host; and the hosts agree with each other as above."""
+    p, written = run(str(tmp_path), liggghts, 1, "cooling", steps=100, extra=["-var", "save", "1"])
+    assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
+    os.rename(written, os.path.join(str(tmp_path), "written.txt"))
+    p, read = run(str(tmp_path), liggghts, 1, "cooling", steps=100, extra=["-var", "resume", "1"])
+    assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
+    a = states(os.path.join(str(tmp_path), "written.txt"))[200][0]
+    b = states(read)[200][0]
+    assert a.shape[0] > 100 and np.array_equal(a, b)
 
 
 def test_bad_keyword_refused_with_granfrics_message(tmp_path):
