@@ -87,6 +87,33 @@ def test_restart_continues_as_the_writing_run(tmp_path, liggghts):
     assert a.shape[0] > 100 and np.array_equal(a, b)
 
 
+def readme_input():
+    """the README's minimal input in LIGGGHTS's syntax (the block after its introduction)"""
+    text = open(os.path.join(ROOT, "README.md")).read()
+    start = text.index("```\n", text.index("The README's minimal input under LIGGGHTS")) + 4
+    return text[start:text.index("```", start)]
+
+
+def test_readme_input_runs_under_liggghts_as_under_lammps(tmp_path):
+    """The README's minimal input under LIGGGHTS, and the same input under LAMMPS (its
+    `atom_style sphere` and `comm_modify vel yes`), print the same thermo lines."""
+    lig = readme_input()
+    lmp = lig.replace("atom_style granular", "atom_style sphere").replace(
+        "communicate single vel yes", "comm_modify vel yes")
+    rows = {}
+    for h, text in ((1, lig), (0, lmp)):
+        path = tmp_path / f"in.readme{h}"
+        path.write_text(text)
+        p = subprocess.run([HOSTS[h], "-in", str(path), "-log", "none"], cwd=str(tmp_path),
+                           capture_output=True, text=True, errors="replace")
+        assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
+        lines = p.stdout.split("\n")
+        k = next(i for i, ln in enumerate(lines) if ln.split()[:1] == ["Step"])
+        rows[h] = [ln.split() for ln in lines[k + 1:k + 3]]
+    assert rows[0] == rows[1]
+    assert int(rows[1][-1][-1]) > 10000    # collisions in 400 steps
+
+
 def test_bad_keyword_refused_with_granfrics_message(tmp_path):
     with open(tmp_path / "in.bad", "w") as f:
         f.write(open(INPUT).read().replace("fix             ed all hardsphere/ed\nvariable        dt equal 0.5",
