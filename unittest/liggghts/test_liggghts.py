@@ -9,7 +9,8 @@ from the same initial state, serially and on 2 ranks. Velocities and spins (dump
 the same bit for bit at the start and after 200 steps, so are the collision counts; positions
 as the hosts keep them agree to 1e-12 of the box (each host wraps atoms into the box with its
 own arithmetic, while the trajectory goes on from the fix's stored states). Under either host a
-run continued from a restart file ends where the writing run ends. A bad keyword is
+run continued from a restart file ends where the writing run ends. LIGGGHTS's soft granular
+walls and pair styles are refused next to fix hardsphere/ed. A bad keyword is
 refused under LIGGGHTS with GRANFRIC's own message (LIGGGHTS 3.8 follows its error lines with a
 line of stray bytes, decoded leniently here).
 """
@@ -112,6 +113,47 @@ def test_readme_input_runs_under_liggghts_as_under_lammps(tmp_path):
         rows[h] = [ln.split() for ln in lines[k + 1:k + 3]]
     assert rows[0] == rows[1]
     assert int(rows[1][-1][-1]) > 10000    # collisions in 400 steps
+
+
+GRANULAR_SETUP = """units lj
+newton off
+dimension 2
+atom_style granular
+communicate single vel yes
+boundary p f p
+region box block 0 10 0 20 -0.5 0.5 units box
+create_box 1 box
+create_atoms 1 single 2 5 0
+create_atoms 1 single 6 10 0
+set group all diameter 1.0
+set group all mass 1.0
+fix m1 all property/global youngsModulus peratomtype 5.e6
+fix m2 all property/global poissonsRatio peratomtype 0.45
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.9
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.05
+timestep 0.1
+"""
+
+
+@pytest.mark.parametrize("what, lines, message", [
+    ("wall/gran", ["pair_style hardsphere/rough inertia disc", "pair_coeff * * 0.9 0.0",
+                   "fix ed all hardsphere/ed",
+                   "fix wg all wall/gran model hertz tangential history primitive type 1 yplane 0.0"],
+     "Fix wg (wall/gran) is a soft granular wall, which the hard particles of fix hardsphere/ed ed "
+     "do not feel: use fix hardsphere/wall"),
+    ("pair gran", ["pair_style gran model hertz tangential history", "pair_coeff * *",
+                   "fix ed all hardsphere/ed"],
+     "Fix hardsphere/ed requires pair style hardsphere/rough, hardsphere/walton or hardsphere/jz "
+     "(found gran)"),
+])
+def test_liggghts_granular_styles_refused(tmp_path, what, lines, message):
+    """LIGGGHTS's soft granular walls and pair styles next to fix hardsphere/ed: a clear error"""
+    path = tmp_path / "in.granular"
+    path.write_text(GRANULAR_SETUP + "\n".join(lines) + "\nrun 0\n")
+    p = subprocess.run([HOSTS[1], "-in", str(path), "-log", "none"], cwd=str(tmp_path),
+                       capture_output=True, text=True, errors="replace")
+    assert p.returncode != 0
+    assert "ERROR: " + message in p.stdout, p.stdout[-2000:]
 
 
 def test_bad_keyword_refused_with_granfrics_message(tmp_path):
