@@ -25,7 +25,6 @@
 #ifndef GRANFRIC_LIGGGHTS
 #include "utils.h"
 #else
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>

@@ -50,7 +50,8 @@ def run_entry(entry, setups, work):
     if where is None:
         return entry["name"], "fail", "no ERROR line"
     msg, source = ERROR.match(out[where]).groups()
-    echoed = [ln.strip() for ln in out[:where] if ln.strip() in {x.strip() for x in lines}]
+    commands = {x.strip() for x in lines}
+    echoed = [ln.strip() for ln in out[:where] if ln.strip() in commands]
     ours = "GRANFRIC" in source
     at_last = bool(echoed) and echoed[-1] == lines[-1].strip()
     if not at_last:
