@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // Core tests of neighbour lists (EDOptions::LISTS): trajectories equal to the brute-force
-// reference, as with cells, for every law in 2D and 3D, with kicks, walls and a list overflow;
+// reference, as with cells, for every law in 2D and 3D, with kicks, walls, a list overflow and an
+// image shift beyond a list entry's range;
 // the automatic choice. (Changes between windows: test_event_driven.cpp.)
 #include "ed_fixture.h"
 
@@ -122,6 +123,34 @@ TEST(NeighbourLists, OverflowContinuesWithCells)
   EXPECT_FALSE(run.ed.uses_lists()) << "lists of ~5 sigma cannot hold their neighbours";
   EXPECT_EQ(run.total.collisions, ref.collisions);
   expect_reference_state(ref, run, 1e-9);
+}
+
+// a particle whose stored position lies 200 periods away: its image shift to its neighbours
+// does not fit a list entry, so the core continues with cells from the start, on the trajectory
+// cells give, bit for bit
+TEST(NeighbourLists, FarImageContinuesWithCells)
+{
+  SystemSpec s = spec_of(200, 3, 0.4, 1213);
+  s.lattice = true;
+  s.polydisperse = false;
+  Reference ref = make_system(s, LawParams::rough(0.9, 0.3));
+  const double mft = mean_free_time(ref);
+  CoreRun lists(ref, 1000000, EDOptions::LISTS, 0.4), cells(ref, 1000000, EDOptions::CELLS);
+  for (CoreRun *r : {&lists, &cells}) {
+    r->ed.particle(7).x.x += 200.0 * ref.L.x;
+    r->ed.start();
+    for (int w = 0; w < 8; w++) {
+      r->total.add(r->ed.advance_to(0.5 * mft));
+      r->ed.rebase(0.5 * mft);
+    }
+  }
+  EXPECT_FALSE(lists.ed.uses_lists());
+  ASSERT_GT(cells.total.collisions, 200);
+  EXPECT_EQ(lists.total.collisions, cells.total.collisions);
+  for (int e = 0; e < (int) ref.p.size(); e++) {
+    EXPECT_EQ(lists.ed.position(e, 0.0).x, cells.ed.position(e, 0.0).x) << "particle " << e;
+    EXPECT_EQ(lists.ed.velocity(e, 0.0).y, cells.ed.velocity(e, 0.0).y) << "particle " << e;
+  }
 }
 
 // the automatic choice: lists in small dense 3d gases without gravity, cells otherwise; lists

@@ -197,20 +197,10 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
 template <int DIM>
 void EventDriven::scan_list_t(int i)
 {
-  // the cell shift of an entry's code, one per component
-  static constexpr int8_t KX[27] = {-1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1, -1, 0, 1};
-  static constexpr int8_t KY[27] = {-1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1, -1, -1, -1, 0, 0, 0, 1, 1, 1};
-  static constexpr int8_t KZ[27] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1};
   Seek k = seek(i);
-  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
   const Entry *e = &NB[(size_t) i * LCAP];
   const int n = NN[i];
-  const Image *IM = img.data();
-  for (int m = 0; m < n; m++) {
-    const int j = entry_j(e[m]), c = (int) (e[m] & 31);
-    const int *qk = IM[j].k;
-    offer<DIM, false>(k, j, pk[0] + KX[c] - qk[0], pk[1] + KY[c] - qk[1], DIM == 3 ? pk[2] + KZ[c] - qk[2] : 0);
-  }
+  for (int m = 0; m < n; m++) offer<DIM, false>(k, e[m].j, e[m].o[0], e[m].o[1], DIM == 3 ? e[m].o[2] : 0);
   settle(k);
 }
 

@@ -87,21 +87,19 @@ void EventDriven::renumber(const std::vector<int> &order)
     if (!TL.empty()) permute(TL, order, same);
     if (!FR.empty()) permute(FR, order, same);
     if (lists) {
-      big_vector<Vec3> X(n);
+      permute(XW, order, same);
+      permute(NN, order, same);
+      // (the lists through a second copy: lists are for systems small enough to afford it)
       big_vector<Entry> B((size_t) n * LCAP);
-      big_vector<uint8_t> N(n);
       for (int k = 0; k < n; k++) {
-        const int o = order[k];
-        X[k] = XN[o];
-        N[k] = NN[o];
-        for (int m = 0; m < NN[o]; m++) {
-          const Entry e = NB[(size_t) o * LCAP + m];
-          B[(size_t) k * LCAP + m] = (Entry) newloc[entry_j(e)] << 5 | (e & 31);
+        const Entry *e = &NB[(size_t) order[k] * LCAP];
+        Entry *f = &B[(size_t) k * LCAP];
+        for (int m = 0; m < NN[k]; m++) {
+          f[m] = e[m];
+          f[m].j = newloc[e[m].j];
         }
       }
-      XN.swap(X);
       NB.swap(B);
-      NN.swap(N);
     }
   }
   for (int k = 0; k < n; k++) loc[ext[k]] = k;
@@ -181,7 +179,7 @@ void EventDriven::setup_cells()
 
 void EventDriven::place(int i)
 {
-  const Vec3 x = lists ? XN[i] : pos(i, now);    // (with lists: the list centre)
+  const Vec3 x = pos(i, now);    // (with lists: the new list centre)
   Sched &s = S[i];
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -195,6 +193,10 @@ void EventDriven::place(int i)
     locate(d, f ? x[d] + f * P[d] : x[d], c, k);
     img[i].k[d] = f ? -f : k;
     s.c[d] = (int16_t) c;
+  }
+  if (lists) {
+    const int *k = img[i].k;
+    XW[i] = x - Vec3(k[0] * P.x, k[1] * P.y, k[2] * P.z);
   }
 }
 

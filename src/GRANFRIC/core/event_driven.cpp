@@ -117,7 +117,7 @@ void EventDriven::resize(int n)
   img.assign(n, Image{{0, 0, 0}, -1});
   if (framed) FR.assign(n, Frame{{0, 0, 0}});
   lists = false;
-  XN.clear();
+  XW.clear();
   NB.clear();
   NN.clear();
   ext.resize(n);
@@ -324,7 +324,6 @@ void EventDriven::changed(int e, bool own_time)
     p.v.z = 0.0;
     c.w.x = c.w.y = 0.0;
   }
-  if (lists) XN[i] = pos(i, now);
   place(i);
   cell_insert(i);
   no_events(i);

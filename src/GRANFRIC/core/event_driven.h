@@ -373,7 +373,7 @@ class EventDriven {
     return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) +
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
-        XN.capacity() * sizeof(Vec3) + NB.capacity() * sizeof(Entry) + NN.capacity() +
+        XW.capacity() * sizeof(Vec3) + NB.capacity() * sizeof(Entry) + NN.capacity() +
         PT.capacity() * sizeof(ParticleTally) +
         head.capacity() * sizeof(int) + queue.memory_bytes() +
         fast.capacity() * sizeof(fast[0]) + gtimes.capacity() * sizeof(double);
@@ -553,22 +553,27 @@ class EventDriven {
   bool lists = false;
   double lskin = 0.0, lrad2 = 0.0;       // lskin, and lrad squared
   static constexpr int LCAP = 32;        // entries per list (more: cells from then on)
-  // a listed neighbour j and the cell shift k (kx, ky, kz in -1..1) at which it was found from
-  // i's cell, as j << 5 | (kx + 1) + 3 (ky + 1) + 9 (kz + 1): j's position + (pk + k - qk) L is
-  // the image next to i, with pk, qk the cell images of i and j (fixed until either rebuilds)
-  using Entry = uint32_t;
-  static int entry_j(Entry e) { return (int) (e >> 5); }
-  static Entry make_entry(int j, int kx, int ky, int kz)
-  {
-    return (Entry) j << 5 | (Entry) ((kx + 1) + 3 * (ky + 1) + 9 * (kz + 1));
-  }
-  static Entry mirror(Entry e, int i) { return (Entry) i << 5 | (26 - (e & 31)); }
-  big_vector<Vec3> XN;                   // list centres
+  // a listed neighbour j and its image shift o: j's position + o P is the image next to i
+  // (fixed until either rebuilds; a shift beyond -128..127 periods: cells from then on)
+  struct Entry {
+    int32_t j;
+    int8_t o[3];
+    uint8_t unused;
+  };
+  static_assert(sizeof(Entry) == 8, "a list entry holds 8 bytes");
+  // list centres inside the box: the centre less the image of its cell, (x_c - k P)
+  big_vector<Vec3> XW;
   big_vector<Entry> NB;                  // LCAP entries per particle
   big_vector<uint8_t> NN;                // entries in use
+  Vec3 list_centre(int i) const          // (unwrapped, as i's position)
+  {
+    const int *k = img[i].k;
+    return XW[i] + Vec3(k[0] * P.x, k[1] * P.y, k[2] * P.z);
+  }
   static bool choose_lists(int dim, double sigma, double n, long count);
   void setup_lists(double sigma);        // (in start(), before the cells)
   void list_drop(int i);                 // i leaves its neighbours' lists; its list empties
+  int around(int i, int cell[27], int8_t shift[27][3]) const;
   bool list_build(int i, bool higher_only);    // false: a list would overflow
   bool build_all_lists();                // every list from empty lists (false: an overflow)
   void list_rebuild(int i);              // the rebuild event

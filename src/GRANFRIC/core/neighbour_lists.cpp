@@ -17,10 +17,10 @@ namespace granfric {
 
 // Lists pay in small dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to
 // about 12000 particles. Measured with bench_core against cells, elastic spheres at fraction
-// 0.45 (bench/README.md): 10 - 20 % faster at N = 4000 - 11000, with 37 % fewer instructions
-// per collision; 5 - 10 % slower at N = 32000, where the lists' records (about 150 more bytes
-// per particle) outgrow the cache one process gets here. At fraction 0.35 the rebuilds cost
-// more than the shorter scans save; in 2d cells are cheaper.
+// 0.45 (bench/README.md): faster at N = 4000, alike at N = 11000 within this machine's noise,
+// with about 30 % fewer instructions per collision; about 10 % slower at N = 32000, where the
+// lists' records (about 280 more bytes per particle) outgrow the cache one process gets here.
+// At fraction 0.35 the rebuilds cost more than the shorter scans save; in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
   return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= 12000;
@@ -35,11 +35,10 @@ void EventDriven::setup_lists(double sigma)
   long present = 0;
   for (int d = 0; d < opt.dim; d++) vol *= L[d];
   for (const Sched &s : S) present += !s.gone;
-  const bool want = opt.neighbours == EDOptions::LISTS ||
+  lists = opt.neighbours == EDOptions::LISTS ||
       (opt.neighbours == EDOptions::AUTO && !has_gravity && vol > 0.0 &&
        choose_lists(opt.dim, sigma, present / vol, present));
-  lists = want && H.size() < (1u << 26);
-  XN.clear();
+  XW.clear();
   NB.clear();
   NN.clear();
   if (!lists) return;
@@ -48,9 +47,8 @@ void EventDriven::setup_lists(double sigma)
   const double lrad = (sigma + 2.0 * lskin) * (1.0 + 1e-9);
   lrad2 = lrad * lrad;
   const size_t n = H.size();
-  XN.resize(n);
-  for (size_t i = 0; i < n; i++) XN[i] = pos((int) i, now);    // (start() or lists_to_cells)
-  NB.assign(n * LCAP, 0);
+  XW.resize(n);    // (set by place())
+  NB.assign(n * LCAP, Entry{0, {0, 0, 0}, 0});
   NN.assign(n, 0);
 }
 
@@ -60,11 +58,11 @@ void EventDriven::list_drop(int i)
 {
   const Entry *e = &NB[(size_t) i * LCAP];
   for (int m = 0; m < NN[i]; m++) {
-    const int j = entry_j(e[m]);
+    const int j = e[m].j;
     Entry *f = &NB[(size_t) j * LCAP];
     int n = NN[j];
     for (int k = 0; k < n;)
-      if (entry_j(f[k]) == i)
+      if (f[k].j == i)
         f[k] = f[--n];
       else
         k++;
@@ -73,55 +71,102 @@ void EventDriven::list_drop(int i)
   NN[i] = 0;
 }
 
+// The neighbouring cells of i's cell (3^dim of them, fewer at non-periodic edges) as cell
+// indices and the image shifts k (-1, 0, 1 per dimension) at which they are reached; returns
+// how many
+int EventDriven::around(int i, int cell[27], int8_t shift[27][3]) const
+{
+  const int16_t *c = S[i].c;
+  int n = 0;
+  if (opt.dim == 3 && c[0] >= 1 && c[0] + 1 < nc[0] && c[1] >= 1 && c[1] + 1 < nc[1] && c[2] >= 1 &&
+      c[2] + 1 < nc[2]) {    // (the usual case: no wrapping, no edge)
+    const int base = (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+    for (int dz = -1; dz <= 1; dz++)
+      for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+          cell[n] = base + (dz * nc[1] + dy) * nc[0] + dx;
+          shift[n][0] = shift[n][1] = shift[n][2] = 0;
+          n++;
+        }
+    return n;
+  }
+  // per dimension: the cell coordinates reached (up to 3), their image shifts
+  int u[3][3], k[3][3], m[3] = {1, 1, 1};
+  for (int d = 0; d < 3; d++) {
+    u[d][0] = c[d], k[d][0] = 0;
+    if (d >= opt.dim) continue;
+    m[d] = 0;
+    for (int e = -1; e <= 1; e++) {
+      int v = c[d] + e, kk = 0;
+      if (v < 0 || v >= nc[d]) {
+        if (!opt.periodic[d]) continue;
+        kk = v < 0 ? -1 : 1;
+        v -= kk * nc[d];
+      }
+      u[d][m[d]] = v, k[d][m[d]] = kk;
+      m[d]++;
+    }
+  }
+  for (int z = 0; z < m[2]; z++)
+    for (int y = 0; y < m[1]; y++)
+      for (int x = 0; x < m[0]; x++) {
+        cell[n] = (u[2][z] * nc[1] + u[1][y]) * nc[0] + u[0][x];
+        shift[n][0] = (int8_t) k[0][x], shift[n][1] = (int8_t) k[1][y], shift[n][2] = (int8_t) k[2][z];
+        n++;
+      }
+  return n;
+}
+
 // Enter every particle whose list centre lies within lrad of i's into i's list and i into
 // theirs (higher_only: only particles of a higher index, for building all lists at once). i's
-// list must be empty and i in its cell. False if a list would exceed LCAP (nothing changed).
+// list must be empty and i in its cell. False if a list would exceed LCAP or an image shift
+// would not fit an entry (nothing changed).
 bool EventDriven::list_build(int i, bool higher_only)
 {
-  const Vec3 c = XN[i];
+  int cell[27];
+  int8_t shift[27][3];
+  const int ncell = around(i, cell, shift);
   const int *pk = img[i].k;
-  const int16_t *cc = S[i].c;
-  Entry found[LCAP + 1];
+  const Image *IM = img.data();
+  const Vec3 *X = XW.data();
+  // near ones: the particle and the cell it was found in
+  int fj[LCAP + 1];
+  uint8_t fc[LCAP + 1];
   int nf = 0;
-  const int zr = opt.dim == 3 ? 1 : 0;
-  for (int dz = -zr; dz <= zr; dz++)
-    for (int dy = -1; dy <= 1; dy++)
-      for (int dx = -1; dx <= 1; dx++) {
-        const int d[3] = {dx, dy, dz};
-        int u[3], k[3] = {0, 0, 0};
-        bool skip = false;
-        for (int m = 0; m < 3 && !skip; m++) {
-          u[m] = cc[m] + d[m];
-          if (u[m] >= 0 && u[m] < nc[m]) continue;
-          if (!opt.periodic[m]) skip = true;
-          k[m] = u[m] < 0 ? -1 : 1;
-          u[m] -= k[m] * nc[m];
-        }
-        if (skip) continue;
-        for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = img[j].next) {
-          if (j == i || (higher_only && j < i)) continue;
-          const int *qk = img[j].k;
-          Vec3 xj = XN[j];
-          const int o0 = pk[0] + k[0] - qk[0], o1 = pk[1] + k[1] - qk[1], o2 = pk[2] + k[2] - qk[2];
-          if (o0 | o1 | o2) xj += Vec3(o0 * P.x, o1 * P.y, o2 * P.z);
-          // (written always, kept if near: whether a particle of the 3^d cells is near is a
-          // coin toss for a branch)
-          found[nf] = make_entry(j, k[0], k[1], k[2]);
-          nf += norm2(c - xj) < lrad2;
-          if (nf > LCAP) return false;
-        }
-      }
+  const int jmin = higher_only ? i + 1 : 0;
+  for (int f = 0; f < ncell; f++) {
+    // i's centre seen from the cell's image (the centres are inside the box)
+    const Vec3 c = XW[i] - Vec3(shift[f][0] * P.x, shift[f][1] * P.y, shift[f][2] * P.z);
+    for (int j = head[cell[f]]; j >= 0; j = IM[j].next) {
+      // (written always, kept if near: whether a particle of the 3^d cells is near is a
+      // coin toss for a branch)
+      fj[nf] = j;
+      fc[nf] = (uint8_t) f;
+      nf += (norm2(c - X[j]) < lrad2) & (j != i) & (j >= jmin);
+      if (nf > LCAP) return false;
+    }
+  }
   if (NN[i] + nf > LCAP) return false;
+  Entry *mine = &NB[(size_t) i * LCAP + NN[i]];
+  for (int m = 0; m < nf; m++) {
+    const int j = fj[m];
+    const int8_t *k = shift[fc[m]];
+    const int *qk = IM[j].k;
+    const int o[3] = {pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]};
+    for (int d = 0; d < 3; d++)
+      if (o[d] < -127 || o[d] > 127) return false;
+    mine[m] = Entry{j, {(int8_t) o[0], (int8_t) o[1], (int8_t) o[2]}, 0};
+  }
   // (each j once per image: its own count is checked before it is entered)
   for (int m = 0; m < nf; m++) {
-    const int j = entry_j(found[m]);
+    const int j = fj[m];
     if (NN[j] == LCAP) {
-      for (int r = 0; r < m; r++) NN[entry_j(found[r])]--;    // undo: i leaves the lists it entered
+      for (int r = 0; r < m; r++) NN[fj[r]]--;    // undo: i leaves the lists it entered
       return false;
     }
-    NB[(size_t) j * LCAP + NN[j]++] = mirror(found[m], i);
+    const int8_t *o = mine[m].o;
+    NB[(size_t) j * LCAP + NN[j]++] = Entry{i, {(int8_t) -o[0], (int8_t) -o[1], (int8_t) -o[2]}, 0};
   }
-  std::copy(found, found + nf, &NB[(size_t) i * LCAP + NN[i]]);
   NN[i] = (uint8_t) (NN[i] + nf);
   return true;
 }
@@ -141,8 +186,7 @@ void EventDriven::list_rebuild(int i)
   count_crossing(i);
   list_drop(i);
   cell_remove(i);
-  XN[i] = pos(i, now);
-  place(i);
+  place(i);    // (the new list centre)
   cell_insert(i);
   if (!list_build(i, false)) {
     lists_to_cells();
@@ -161,7 +205,7 @@ void EventDriven::lists_to_cells()
   const int n = (int) H.size();
   for (int i = 0; i < n; i++) advance(i, now);
   lists = false;
-  XN.clear();
+  XW.clear();
   NB.clear();
   NN.clear();
   setup_cells();
@@ -176,7 +220,7 @@ void EventDriven::lists_to_cells()
 void EventDriven::predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi)
 {
   Sched &p = S[i];
-  const Vec3 d = xi - XN[i];
+  const Vec3 d = xi - list_centre(i);
   const double b = dot(d, vi), v2 = norm2(vi), c = norm2(d) - lskin * lskin;
   if (!(v2 > 0.0)) {
     p.xt = NEVER;
@@ -201,13 +245,8 @@ void EventDriven::predict_all_lists()
   }
   for (int i = 0; i < n; i++) {
     const Entry *e = &NB[(size_t) i * LCAP];
-    const int *pk = img[i].k;
-    for (int m = 0; m < NN[i]; m++) {
-      const int j = entry_j(e[m]), c = (int) (e[m] & 31);
-      const int *qk = img[j].k;
-      if (j > i)
-        offer_both(i, j, pk[0] + c % 3 - 1 - qk[0], pk[1] + c / 3 % 3 - 1 - qk[1], pk[2] + c / 9 - 1 - qk[2]);
-    }
+    for (int m = 0; m < NN[i]; m++)
+      if (e[m].j > i) offer_both(i, e[m].j, e[m].o[0], e[m].o[1], e[m].o[2]);
   }
 }
 
