@@ -218,50 +218,39 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
   depth = 0.0;
   key_i = key_j = -1;
   const int n = (int) H.size();
-  const int reach[3] = {1, opt.dim > 1 ? 1 : 0, opt.dim > 2 ? 1 : 0};
   for (int i = 0; i < n; i++) {
     if (S[i].gone) continue;
-    const Hot &p = H[i];
     const Vec3 xi = pos(i, now);
-    for (int dz = -reach[2]; dz <= reach[2]; dz++)
-      for (int dy = -reach[1]; dy <= reach[1]; dy++)
-        for (int dx = -reach[0]; dx <= reach[0]; dx++) {
-          const int d[3] = {dx, dy, dz};
-          int u[3], k[3];
-          bool skip = false;
-          for (int m = 0; m < 3 && !skip; m++) {
-            u[m] = S[i].c[m] + d[m];
-            k[m] = 0;
-            if (u[m] < 0 || u[m] >= nc[m]) {
-              // (with fewer than 3 cells a cell is reached at two or three image shifts: each
-              // is another image of its particles)
-              if (!opt.periodic[m]) skip = true;
-              k[m] = u[m] < 0 ? -1 : 1;
-              u[m] -= k[m] * nc[m];
-            }
-          }
-          if (skip) continue;
-          const int cell = (u[2] * nc[1] + u[1]) * nc[0] + u[0];
-          for (int j = head[cell]; j >= 0; j = img[j].next) {
-            if (j == i) continue;
-            const Hot &q = H[j];
-            const long ki = key(i), kj = key(j);
-            if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
-            if (!counted(ki <= kj ? i : j)) continue;
-            const int *pk = img[i].k, *qk = img[j].k;
-            const Vec3 shift((pk[0] + k[0] - qk[0]) * P.x, (pk[1] + k[1] - qk[1]) * P.y,
-                             (pk[2] + k[2] - qk[2]) * P.z);
-            const double dist = norm(xi - pos(j, now) - shift), sigma = p.a + q.a;
-            if (dist < sigma * (1.0 - tol)) {
-              count++;
-              if (sigma - dist > depth) {
-                depth = sigma - dist;
-                key_i = ki;
-                key_j = kj;
-              }
-            }
+    const long ki = key(i);
+    const int *pk = img[i].k;
+    // (with fewer than 3 cells a cell is reached at two or three image shifts: each is another
+    // image of its particles)
+    int cell[27];
+    int8_t k[27][3];
+    const int ncell = around(i, cell, k);
+    for (int f = 0; f < ncell; f++)
+      for (int j = head[cell[f]]; j >= 0; j = img[j].next) {
+        if (j == i) continue;
+        const long kj = key(j);
+        if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
+        const int *qk = img[j].k;
+        const Vec3 shift((pk[0] + k[f][0] - qk[0]) * P.x, (pk[1] + k[f][1] - qk[1]) * P.y,
+                         (pk[2] + k[f][2] - qk[2]) * P.z);
+        const Vec3 r = xi - pos(j, now) - shift;
+        const double sigma = H[i].a + H[j].a, lim = sigma * (1.0 - tol), r2 = norm2(r);
+        // (the root only near contact: a pair is far when r2 exceeds lim^2 by more than the
+        // roundings of the two ways of comparing)
+        if (r2 > lim * lim * (1.0 + 1e-12) || !counted(ki <= kj ? i : j)) continue;
+        const double dist = std::sqrt(r2);
+        if (dist < lim) {
+          count++;
+          if (sigma - dist > depth) {
+            depth = sigma - dist;
+            key_i = ki;
+            key_j = kj;
           }
         }
+      }
   }
   return count;
 }

@@ -210,6 +210,52 @@ void EventDriven::locate(int d, double xd, int &c, int &k) const
   c = (int) (u - kk * nc[d]);
 }
 
+// The neighbouring cells of i's cell (3^dim of them, fewer at non-periodic edges) as cell
+// indices and the image shifts k (-1, 0, 1 per dimension) at which they are reached; returns
+// how many
+int EventDriven::around(int i, int cell[27], int8_t shift[27][3]) const
+{
+  const int16_t *c = S[i].c;
+  int n = 0;
+  if (opt.dim == 3 && c[0] >= 1 && c[0] + 1 < nc[0] && c[1] >= 1 && c[1] + 1 < nc[1] && c[2] >= 1 &&
+      c[2] + 1 < nc[2]) {    // (the usual case: no wrapping, no edge)
+    const int base = (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+    for (int dz = -1; dz <= 1; dz++)
+      for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+          cell[n] = base + (dz * nc[1] + dy) * nc[0] + dx;
+          shift[n][0] = shift[n][1] = shift[n][2] = 0;
+          n++;
+        }
+    return n;
+  }
+  // per dimension: the cell coordinates reached (up to 3), their image shifts
+  int u[3][3], k[3][3], m[3] = {1, 1, 1};
+  for (int d = 0; d < 3; d++) {
+    u[d][0] = c[d], k[d][0] = 0;
+    if (d >= opt.dim) continue;
+    m[d] = 0;
+    for (int e = -1; e <= 1; e++) {
+      int v = c[d] + e, kk = 0;
+      if (v < 0 || v >= nc[d]) {
+        if (!opt.periodic[d]) continue;
+        kk = v < 0 ? -1 : 1;
+        v -= kk * nc[d];
+      }
+      u[d][m[d]] = v, k[d][m[d]] = kk;
+      m[d]++;
+    }
+  }
+  for (int z = 0; z < m[2]; z++)
+    for (int y = 0; y < m[1]; y++)
+      for (int x = 0; x < m[0]; x++) {
+        cell[n] = (u[2][z] * nc[1] + u[1][y]) * nc[0] + u[0][x];
+        shift[n][0] = (int8_t) k[0][x], shift[n][1] = (int8_t) k[1][y], shift[n][2] = (int8_t) k[2][z];
+        n++;
+      }
+  return n;
+}
+
 void EventDriven::cell_insert(int i)
 {
   const int c = cell_of(i);

@@ -573,7 +573,6 @@ class EventDriven {
   static bool choose_lists(int dim, double sigma, double n, long count);
   void setup_lists(double sigma);        // (in start(), before the cells)
   void list_drop(int i);                 // i leaves its neighbours' lists; its list empties
-  int around(int i, int cell[27], int8_t shift[27][3]) const;
   bool list_build(int i, bool higher_only);    // false: a list would overflow
   bool build_all_lists();                // every list from empty lists (false: an overflow)
   void list_rebuild(int i);              // the rebuild event
@@ -624,6 +623,9 @@ class EventDriven {
   }
   void cell_insert(int i);
   void cell_remove(int i);
+  // the cells around i's (3^dim, fewer at non-periodic edges): cell indices and the image
+  // shifts (-1, 0, 1 per dimension) at which they are reached; returns how many
+  int around(int i, int cell[27], int8_t shift[27][3]) const;
   // particle i's stored state brought to window time t (its position as pos() gives it)
   void advance(int i, double t)
   {
