@@ -234,8 +234,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
         const long kj = key(j);
         if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
         const int *qk = img[j].k;
-        const Vec3 shift((pk[0] + k[f][0] - qk[0]) * P.x, (pk[1] + k[f][1] - qk[1]) * P.y,
-                         (pk[2] + k[f][2] - qk[2]) * P.z);
+        const Vec3 shift = periods(pk[0] + k[f][0] - qk[0], pk[1] + k[f][1] - qk[1], pk[2] + k[f][2] - qk[2]);
         const Vec3 r = xi - pos(j, now) - shift;
         const double sigma = H[i].a + H[j].a, lim = sigma * (1.0 - tol), r2 = norm2(r);
         // (the root only near contact: a pair is far when r2 exceeds lim^2 by more than the

@@ -196,7 +196,7 @@ void EventDriven::place(int i)
   }
   if (lists) {
     const int *k = img[i].k;
-    XW[i] = x - Vec3(k[0] * P.x, k[1] * P.y, k[2] * P.z);
+    XW[i] = x - periods(k[0], k[1], k[2]);
   }
 }
 

@@ -180,7 +180,7 @@ void EventDriven::collide_pair(int e)
   Cold &q = C[j];
   advance(i, t);
   advance(j, t);
-  const Vec3 r = hp.x - hq.x - Vec3(off[0] * P.x, off[1] * P.y, off[2] * P.z);
+  const Vec3 r = hp.x - hq.x - periods(off[0], off[1], off[2]);
   const Vec3 n = (1.0 / norm(r)) * r;
 
   LawParams law = laws[s.type * (ntypes + 1) + S[j].type];

@@ -534,6 +534,8 @@ class EventDriven {
   std::vector<double> qt = {0.4, 0.4};   // moment of inertia / (m a^2) by type (configure)
   Vec3 L;                                // box lengths
   Vec3 P;                                // periods of image shifts (L if periodic, else period)
+  // an image shift of a, b, c periods as a displacement
+  Vec3 periods(int a, int b, int c) const { return Vec3(a * P.x, b * P.y, c * P.z); }
   bool framed = false;                   // open dimensions with a period: frames (FR) in use
   struct Frame {
     int f[3];
@@ -568,7 +570,7 @@ class EventDriven {
   Vec3 list_centre(int i) const          // (unwrapped, as i's position)
   {
     const int *k = img[i].k;
-    return XW[i] + Vec3(k[0] * P.x, k[1] * P.y, k[2] * P.z);
+    return XW[i] + periods(k[0], k[1], k[2]);
   }
   static bool choose_lists(int dim, double sigma, double n, long count);
   void setup_lists(double sigma);        // (in start(), before the cells)

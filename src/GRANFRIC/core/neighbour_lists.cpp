@@ -90,7 +90,7 @@ bool EventDriven::list_build(int i, bool higher_only)
   const int jmin = higher_only ? i + 1 : 0;
   for (int f = 0; f < ncell; f++) {
     // i's centre seen from the cell's image (the centres are inside the box)
-    const Vec3 c = XW[i] - Vec3(shift[f][0] * P.x, shift[f][1] * P.y, shift[f][2] * P.z);
+    const Vec3 c = X[i] - periods(shift[f][0], shift[f][1], shift[f][2]);
     for (int j = head[cell[f]]; j >= 0; j = IM[j].next) {
       // (written always, kept if near: whether a particle of the 3^d cells is near is a
       // coin toss for a branch)
