@@ -28,15 +28,26 @@ void EventDriven::scan_in(int i, const int dlo[3], const int dhi[3])
 {
   if (opt.dim == 2) {
     if (has_gravity)
-      scan_t<2, true, FULL>(i, dlo, dhi);
+      scan_at<2, true, FULL>(i, dlo, dhi);
     else
-      scan_t<2, false, FULL>(i, dlo, dhi);
+      scan_at<2, false, FULL>(i, dlo, dhi);
   } else {
     if (has_gravity)
-      scan_t<3, true, FULL>(i, dlo, dhi);
+      scan_at<3, true, FULL>(i, dlo, dhi);
     else
-      scan_t<3, false, FULL>(i, dlo, dhi);
+      scan_at<3, false, FULL>(i, dlo, dhi);
   }
+}
+
+// A seeker at the present (as after its collision) is at least as late as every candidate:
+// its scan knows that at compile time (LATEST)
+template <int DIM, bool GRAV, bool FULL>
+inline void EventDriven::scan_at(int i, const int dlo[3], const int dhi[3])
+{
+  if (H[i].t == now)
+    scan_t<DIM, GRAV, FULL, true>(i, dlo, dhi);
+  else
+    scan_t<DIM, GRAV, FULL, false>(i, dlo, dhi);
 }
 
 // The contact time of a particle in stored state p and one in stored state q at the image shift
@@ -49,23 +60,26 @@ template <int DIM, bool GRAV>
 inline __attribute__((always_inline)) double EventDriven::contact(const Hot &p, const Hot &q, int o0,
                                                                   int o1, int o2, double before) const
 {
+  if (q.t <= p.t) return contact_at<DIM, GRAV>(p, p.t, p.x, p.v, q, o0, o1, o2, horizon_factor(before - p.t));
+  const double tr = q.t, dt = tr - p.t;
   const Vec3 g = opt.gravity;
-  double tr, a0, a1, a2, u0, u1, u2;    // p at tr
-  if (q.t <= p.t) {
-    tr = p.t;
-    a0 = p.x.x, a1 = p.x.y, a2 = p.x.z;
-    u0 = p.v.x, u1 = p.v.y, u2 = p.v.z;
-  } else {
-    tr = q.t;
-    const Vec3 xa = flight_x(p.x, p.v, tr - p.t, g, has_gravity), va = flight_v(p.v, tr - p.t, g);
-    a0 = xa.x, a1 = xa.y, a2 = xa.z;
-    u0 = va.x, u1 = va.y, u2 = va.z;
-  }
+  const Vec3 xa = flight_x(p.x, p.v, dt, g, GRAV), va = flight_v(p.v, dt, g);
+  return contact_at<DIM, GRAV>(p, tr, xa, va, q, o0, o1, o2, horizon_factor(before - tr));
+}
+
+// contact() with p's state at tr >= q.t given (position a, velocity u) and the horizon as its
+// factor hf
+template <int DIM, bool GRAV>
+inline __attribute__((always_inline)) double EventDriven::contact_at(const Hot &p, double tr, const Vec3 &a,
+                                                                     const Vec3 &u, const Hot &q, int o0,
+                                                                     int o1, int o2, double hf) const
+{
   const double dtj = tr - q.t;    // q at tr
   double b0 = q.x.x + dtj * q.v.x, b1 = q.x.y + dtj * q.v.y;
   double b2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
   double w0 = q.v.x, w1 = q.v.y, w2 = DIM == 3 ? q.v.z : 0.0;
   if (GRAV) {
+    const Vec3 g = opt.gravity;
     const double h = 0.5 * dtj * dtj;
     b0 += h * g.x;
     b1 += h * g.y;
@@ -76,14 +90,14 @@ inline __attribute__((always_inline)) double EventDriven::contact(const Hot &p, 
       w2 += dtj * g.z;
     }
   }
-  double r0 = a0 - b0, r1 = a1 - b1, r2 = a2 - b2;
+  double r0 = a.x - b0, r1 = a.y - b1, r2 = a.z - b2;
   if (o0 | o1 | o2) {
     r0 -= o0 * P.x;
     r1 -= o1 * P.y;
     if (DIM == 3) r2 -= o2 * P.z;
   }
-  const double tau = pair_contact_time<DIM>(r0, r1, r2, u0 - w0, u1 - w1, DIM == 3 ? u2 - w2 : 0.0,
-                                            p.a + q.a, before - tr);
+  const double tau = pair_contact_time_f<DIM>(r0, r1, r2, u.x - w0, u.y - w1, DIM == 3 ? u.z - w2 : 0.0,
+                                              p.a + q.a, hf);
   if (tau == NEVER) return NEVER;
   const double t = tr + tau;
   return t < now ? now : t;
@@ -96,17 +110,21 @@ double EventDriven::pair_time(int i, int j, int o0, int o1, int o2) const
 }
 
 // One candidate j at the image shift o (j's position + o P): kept as the seeker's best when its
-// contact time is the earliest so far
-template <int DIM, bool GRAV>
+// contact time is the earliest so far. LATEST: the seeker's stored time is the latest (no
+// candidate's is later), so that its state and horizon factor are the scan's for every one.
+template <int DIM, bool GRAV, bool LATEST>
 inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, int o0, int o1, int o2)
 {
-  const double t = contact<DIM, GRAV>(k.p, H[j], o0, o1, o2, k.t);
+  const Hot &q = H[j];
+  const double t = LATEST ? contact_at<DIM, GRAV>(k.p, k.p.t, k.p.x, k.p.v, q, o0, o1, o2, k.hf)
+                          : contact<DIM, GRAV>(k.p, q, o0, o1, o2, k.t);
   if (t < k.t) {
     // two particles whose last collisions were with each other (same periodic image)
     // separate in free flight: relative motion is a straight line, they are no candidates
     // (tested only here, for a would-be candidate: the same outcome as skipping them)
     if (separating(k.i, j, o0, o1, o2)) return;
     k.t = t;
+    k.hf = horizon_factor(t - k.p.t);
     k.j = j;
     k.o[0] = o0, k.o[1] = o1, k.o[2] = o2;
   }
@@ -116,7 +134,7 @@ inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, in
 inline EventDriven::Seek EventDriven::seek(int i) const
 {
   const Sched &s = S[i];
-  return Seek{H[i], s.ct, i, -1, {0, 0, 0}};
+  return Seek{H[i], s.ct, horizon_factor(s.ct - H[i].t), i, -1, {0, 0, 0}};
 }
 
 inline void EventDriven::settle(const Seek &k)
@@ -134,7 +152,7 @@ inline void EventDriven::settle(const Seek &k)
 // moves in z (v.z = 0, g.z = 0): the z terms of the relative motion vanish except the constant
 // z distance, and every operation left is the one of the 3d arithmetic in the same order, so
 // the contact times are the same numbers bit for bit.
-template <int DIM, bool GRAV, bool FULL>
+template <int DIM, bool GRAV, bool FULL, bool LATEST>
 void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
 {
   Seek k = seek(i);
@@ -167,7 +185,7 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
       }
     for (int f = 0; f < nfirst; f++)
       for (int j = first[f]; j >= 0; j = IM[j].next)
-        if (j != i) offer<DIM, GRAV>(k, j, pk[0] - IM[j].k[0], pk[1] - IM[j].k[1], DIM == 3 ? pk[2] - IM[j].k[2] : 0);
+        if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] - IM[j].k[0], pk[1] - IM[j].k[1], DIM == 3 ? pk[2] - IM[j].k[2] : 0);
     settle(k);
     return;
   }
@@ -185,7 +203,7 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = img[j].next)
-          if (j != i) offer<DIM, GRAV>(k, j, pk[0] + kx - img[j].k[0], pk[1] + ky - img[j].k[1],
+          if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] + kx - img[j].k[0], pk[1] + ky - img[j].k[1],
                                       DIM == 3 ? pk[2] + kz - img[j].k[2] : 0);
       }
     }
@@ -194,22 +212,23 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
 }
 
 // collision candidates of i among its listed neighbours (no gravity with lists)
-template <int DIM>
+template <int DIM, bool LATEST>
 void EventDriven::scan_list_t(int i)
 {
   Seek k = seek(i);
   const Entry *e = &NB[(size_t) i * LCAP];
   const int n = NN[i];
-  for (int m = 0; m < n; m++) offer<DIM, false>(k, e[m].j, e[m].o[0], e[m].o[1], DIM == 3 ? e[m].o[2] : 0);
+  for (int m = 0; m < n; m++) offer<DIM, false, LATEST>(k, e[m].j, e[m].o[0], e[m].o[1], DIM == 3 ? e[m].o[2] : 0);
   settle(k);
 }
 
 void EventDriven::scan_list(int i)
 {
+  const bool latest = H[i].t == now;    // (as scan_at())
   if (opt.dim == 3)
-    scan_list_t<3>(i);
+    latest ? scan_list_t<3, true>(i) : scan_list_t<3, false>(i);
   else
-    scan_list_t<2>(i);
+    latest ? scan_list_t<2, true>(i) : scan_list_t<2, false>(i);
 }
 
 long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) const

@@ -581,7 +581,7 @@ class EventDriven {
   void lists_to_cells();                 // after an overflow: cells from now on
   void predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi);
   void scan_list(int i);
-  template <int DIM>
+  template <int DIM, bool LATEST>
   void scan_list_t(int i);
   void predict_all_lists();
   bool started = false;                  // start() done since resize()
@@ -655,23 +655,29 @@ class EventDriven {
   template <bool FULL>
   void scan_in(int i, const int dlo[3], const int dhi[3]);
   template <int DIM, bool GRAV, bool FULL>
+  void scan_at(int i, const int dlo[3], const int dhi[3]);
+  template <int DIM, bool GRAV, bool FULL, bool LATEST>
   void scan_t(int i, const int dlo[3], const int dhi[3]);
   // a scan in progress: particle i's stored state (read once), its best candidate so far
-  // (time t, partner j, image shift o; j = -1: the schedule's candidate stands)
+  // (time t, partner j, image shift o; j = -1: the schedule's candidate stands) and the
+  // horizon factor of t seen from p's time (horizon_factor(t - p.t))
   struct Seek {
     Hot p;
-    double t;
+    double t, hf;
     int i, j, o[3];
   };
   Seek seek(int i) const;            // from i's schedule
   void settle(const Seek &k);        // the best candidate into i's schedule
   // one candidate j at the image shift o (j's position + o P)
-  template <int DIM, bool GRAV>
+  template <int DIM, bool GRAV, bool LATEST>
   void offer(Seek &k, int j, int o0, int o1, int o2);
   // the canonical contact time of stored states p and q at the image shift o (q's position +
   // o P), >= now; NEVER also where it is certainly >= before
   template <int DIM, bool GRAV>
   double contact(const Hot &p, const Hot &q, int o0, int o1, int o2, double before) const;
+  template <int DIM, bool GRAV>
+  double contact_at(const Hot &p, double tr, const Vec3 &a, const Vec3 &u, const Hot &q, int o0, int o1,
+                    int o2, double hf) const;
   // the canonical contact time of i and j at the image shift o (j's position + o P), >= now
   template <int DIM, bool GRAV>
   double pair_time(int i, int j, int o0, int o1, int o2) const;

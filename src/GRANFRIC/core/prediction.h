@@ -25,16 +25,22 @@ constexpr double NEVER = std::numeric_limits<double>::infinity();
 // horizon. The bound: with c = r^2 - sigma^2 > 0 and b = r.v < 0 the root tau = c / (-b +
 // sqrt(b^2 - v^2 c)) is at least c / (-2 b), and as computed at least that much less 10 roundings
 // (the square root's argument never exceeds b^2 as rounded); the margin 1e-9 covers them and
-// the rounding of the horizon, so a pruned contact would have come out >= horizon.
+// the roundings of the horizon and its factor, so a pruned contact would have come out >=
+// horizon.
+// The horizon as the scans carry it: a contact is pruned where c > -b horizon_factor(horizon)
+// (c, b as below). The factor holds the bound's 2 and its margin, so that a scan computes it
+// once per better candidate, not once per candidate.
+inline double horizon_factor(double horizon) { return horizon * (2.0 * (1.0 + 1e-9)); }
+
 template <int DIM>
-inline double pair_contact_time(double r0, double r1, double r2, double v0, double v1, double v2,
-                                double sigma, double horizon = NEVER)
+inline double pair_contact_time_f(double r0, double r1, double r2, double v0, double v1, double v2,
+                                  double sigma, double hf)
 {
   const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
   const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
   // Few branches: whether a candidate approaches (b < 0) is a coin toss, which a branch
   // predictor gets wrong about half the time; one branch asks whether it approaches soon enough
-  const bool soon = (b < 0.0) & !(c > (-2.0 * b) * horizon * (1.0 + 1e-9));
+  const bool soon = (b < 0.0) & !(c > -b * hf);
   if (!soon) return NEVER;
   const double w2 = DIM == 3 ? v0 * v0 + v1 * v1 + v2 * v2 : v0 * v0 + v1 * v1;
   const double disc = b * b - w2 * c;
@@ -42,6 +48,13 @@ inline double pair_contact_time(double r0, double r1, double r2, double v0, doub
   const bool meet = disc >= 0.0;
   const double tau = c / (-b + std::sqrt(meet ? disc : 1.0));    // stable form of (-b - sqrt(disc))/v2
   return meet ? (tau > 0.0 ? tau : 0.0) : NEVER;
+}
+
+template <int DIM>
+inline double pair_contact_time(double r0, double r1, double r2, double v0, double v1, double v2,
+                                double sigma, double horizon = NEVER)
+{
+  return pair_contact_time_f<DIM>(r0, r1, r2, v0, v1, v2, sigma, horizon_factor(horizon));
 }
 
 inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
