@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace granfric {
 
@@ -68,36 +69,51 @@ inline __attribute__((always_inline)) double EventDriven::contact(const Hot &p, 
 }
 
 // contact() with p's state at tr >= q.t given (position a, velocity u) and the horizon as its
-// factor hf
+// factor hf. The x and y components go in pairs (one SSE2 operation for both): each is the
+// scalar arithmetic of pos() and vel() and of the contact time, operation by operation, so the
+// numbers are the same bit for bit.
+typedef double v2d __attribute__((vector_size(16)));
+static inline v2d xy(const Vec3 &a)
+{
+  v2d r;
+  std::memcpy(&r, &a.x, sizeof r);
+  return r;
+}
+
 template <int DIM, bool GRAV>
 inline __attribute__((always_inline)) double EventDriven::contact_at(const Hot &p, double tr, const Vec3 &a,
                                                                      const Vec3 &u, const Hot &q, int o0,
                                                                      int o1, int o2, double hf) const
 {
   const double dtj = tr - q.t;    // q at tr
-  double b0 = q.x.x + dtj * q.v.x, b1 = q.x.y + dtj * q.v.y;
-  double b2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z;
-  double w0 = q.v.x, w1 = q.v.y, w2 = DIM == 3 ? q.v.z : 0.0;
+  const v2d dt = {dtj, dtj};
+  v2d bxy = xy(q.x) + dt * xy(q.v), wxy = xy(q.v);
+  double b2 = DIM == 3 ? q.x.z + dtj * q.v.z : q.x.z, w2 = DIM == 3 ? q.v.z : 0.0;
   if (GRAV) {
     const Vec3 g = opt.gravity;
     const double h = 0.5 * dtj * dtj;
-    b0 += h * g.x;
-    b1 += h * g.y;
-    w0 += dtj * g.x;
-    w1 += dtj * g.y;
+    const v2d hh = {h, h};
+    bxy += hh * xy(g);
+    wxy += dt * xy(g);
     if (DIM == 3) {
       b2 += h * g.z;
       w2 += dtj * g.z;
     }
   }
-  double r0 = a.x - b0, r1 = a.y - b1, r2 = a.z - b2;
+  v2d r = xy(a) - bxy;
+  double r2 = a.z - b2;
   if (o0 | o1 | o2) {
-    r0 -= o0 * P.x;
-    r1 -= o1 * P.y;
+    const v2d s = {o0 * P.x, o1 * P.y};
+    r -= s;
     if (DIM == 3) r2 -= o2 * P.z;
   }
-  const double tau = pair_contact_time_f<DIM>(r0, r1, r2, u.x - w0, u.y - w1, DIM == 3 ? u.z - w2 : 0.0,
-                                              p.a + q.a, hf);
+  const v2d v = xy(u) - wxy;
+  const double v2 = DIM == 3 ? u.z - w2 : 0.0;
+  const v2d rv = r * v, rr = r * r;
+  const double b = DIM == 3 ? (rv[0] + rv[1]) + r2 * v2 : rv[0] + rv[1];
+  const double sigma = p.a + q.a;
+  const double c = ((rr[0] + rr[1]) + r2 * r2) - sigma * sigma;
+  const double tau = contact_root<DIM>(b, c, v[0], v[1], v2, hf);
   if (tau == NEVER) return NEVER;
   const double t = tr + tau;
   return t < now ? now : t;

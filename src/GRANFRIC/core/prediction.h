@@ -27,17 +27,17 @@ constexpr double NEVER = std::numeric_limits<double>::infinity();
 // (the square root's argument never exceeds b^2 as rounded); the margin 1e-9 covers them and
 // the roundings of the horizon and its factor, so a pruned contact would have come out >=
 // horizon.
+//
 // The horizon as the scans carry it: a contact is pruned where c > -b horizon_factor(horizon)
 // (c, b as below). The factor holds the bound's 2 and its margin, so that a scan computes it
 // once per better candidate, not once per candidate.
 inline double horizon_factor(double horizon) { return horizon * (2.0 * (1.0 + 1e-9)); }
 
+// The contact time from b = r.v, c = r^2 - sigma^2 and the relative velocity v (for v^2), with
+// the horizon as its factor hf
 template <int DIM>
-inline double pair_contact_time_f(double r0, double r1, double r2, double v0, double v1, double v2,
-                                  double sigma, double hf)
+inline double contact_root(double b, double c, double v0, double v1, double v2, double hf)
 {
-  const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
-  const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
   // Few branches: whether a candidate approaches (b < 0) is a coin toss, which a branch
   // predictor gets wrong about half the time; one branch asks whether it approaches soon enough
   const bool soon = (b < 0.0) & !(c > -b * hf);
@@ -48,6 +48,15 @@ inline double pair_contact_time_f(double r0, double r1, double r2, double v0, do
   const bool meet = disc >= 0.0;
   const double tau = c / (-b + std::sqrt(meet ? disc : 1.0));    // stable form of (-b - sqrt(disc))/v2
   return meet ? (tau > 0.0 ? tau : 0.0) : NEVER;
+}
+
+template <int DIM>
+inline double pair_contact_time_f(double r0, double r1, double r2, double v0, double v1, double v2,
+                                  double sigma, double hf)
+{
+  const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
+  const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
+  return contact_root<DIM>(b, c, v0, v1, v2, hf);
 }
 
 template <int DIM>
