@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <sstream>
 
@@ -220,13 +221,13 @@ int EventDriven::around(int i, int cell[27], int8_t shift[27][3]) const
   if (opt.dim == 3 && c[0] >= 1 && c[0] + 1 < nc[0] && c[1] >= 1 && c[1] + 1 < nc[1] && c[2] >= 1 &&
       c[2] + 1 < nc[2]) {    // (the usual case: no wrapping, no edge)
     const int base = (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+    std::memset(shift, 0, 27 * sizeof shift[0]);
     for (int dz = -1; dz <= 1; dz++)
-      for (int dy = -1; dy <= 1; dy++)
-        for (int dx = -1; dx <= 1; dx++) {
-          cell[n] = base + (dz * nc[1] + dy) * nc[0] + dx;
-          shift[n][0] = shift[n][1] = shift[n][2] = 0;
-          n++;
-        }
+      for (int dy = -1; dy <= 1; dy++) {
+        const int row = base + (dz * nc[1] + dy) * nc[0];
+        cell[n] = row - 1, cell[n + 1] = row, cell[n + 2] = row + 1;
+        n += 3;
+      }
     return n;
   }
   // per dimension: the cell coordinates reached (up to 3), their image shifts

@@ -556,13 +556,16 @@ class EventDriven {
   double lskin = 0.0, lrad2 = 0.0;       // lskin, and lrad squared
   static constexpr int LCAP = 32;        // entries per list (more: cells from then on)
   // a listed neighbour j and its image shift o: j's position + o P is the image next to i
-  // (fixed until either rebuilds; a shift beyond -128..127 periods: cells from then on)
+  // (fixed until either rebuilds; a shift beyond -128..127 periods: cells from then on), and
+  // where j's list holds the reverse entry (i at -o): at r, so that a rebuild leaves j's list
+  // without searching it
   struct Entry {
     int32_t j;
     int8_t o[3];
-    uint8_t unused;
+    uint8_t r;
   };
   static_assert(sizeof(Entry) == 8, "a list entry holds 8 bytes");
+  static_assert(LCAP <= 256, "a reverse index r fits 8 bits");
   // list centres inside the box: the centre less the image of its cell, (x_c - k P)
   big_vector<Vec3> XW;
   big_vector<Entry> NB;                  // LCAP entries per particle

@@ -53,20 +53,19 @@ void EventDriven::setup_lists(double sigma)
 }
 
 // Remove i from the list of each of its neighbours (every entry, whatever its image) and empty
-// i's list.
+// i's list. Each entry's reverse index gives the place of i in the neighbour's list; the
+// neighbour's last entry takes that place, and the reverse index of that entry's own reverse
+// follows it (it may be one of i's later entries: i listed at two images).
 void EventDriven::list_drop(int i)
 {
   const Entry *e = &NB[(size_t) i * LCAP];
   for (int m = 0; m < NN[i]; m++) {
-    const int j = e[m].j;
+    const int j = e[m].j, r = e[m].r;
     Entry *f = &NB[(size_t) j * LCAP];
-    int n = NN[j];
-    for (int k = 0; k < n;)
-      if (f[k].j == i)
-        f[k] = f[--n];
-      else
-        k++;
-    NN[j] = (uint8_t) n;
+    const int last = --NN[j];
+    if (r == last) continue;
+    f[r] = f[last];
+    NB[(size_t) f[r].j * LCAP + f[r].r].r = (uint8_t) r;
   }
   NN[i] = 0;
 }
@@ -119,7 +118,9 @@ bool EventDriven::list_build(int i, bool higher_only)
       return false;
     }
     const int8_t *o = mine[m].o;
-    NB[(size_t) j * LCAP + NN[j]++] = Entry{i, {(int8_t) -o[0], (int8_t) -o[1], (int8_t) -o[2]}, 0};
+    const int rj = NN[j]++;
+    NB[(size_t) j * LCAP + rj] = Entry{i, {(int8_t) -o[0], (int8_t) -o[1], (int8_t) -o[2]}, (uint8_t) (NN[i] + m)};
+    mine[m].r = (uint8_t) rj;
   }
   NN[i] = (uint8_t) (NN[i] + nf);
   return true;
