@@ -325,11 +325,12 @@ void EventDriven::changed(int e, bool own_time)
     c.w.x = c.w.y = 0.0;
   }
   place(i);
+  const bool built = !lists || list_build(i, false);    // (i in no cell)
   cell_insert(i);
   no_events(i);
   queue.update(i, NEVER);    // until refresh() predicts it
   dirty.push_back(e);
-  if (lists && !list_build(i, false)) lists_to_cells();
+  if (!built) lists_to_cells();
 }
 
 bool EventDriven::nudge(int e, const double *x, const double *v, const double *w)

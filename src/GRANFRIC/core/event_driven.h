@@ -579,6 +579,8 @@ class EventDriven {
   void setup_lists(double sigma);        // (in start(), before the cells)
   void list_drop(int i);                 // i leaves its neighbours' lists; its list empties
   bool list_build(int i, bool higher_only);    // false: a list would overflow
+  template <bool HIGHER>
+  bool list_build_t(int i);
   bool build_all_lists();                // every list from empty lists (false: an overflow)
   void list_rebuild(int i);              // the rebuild event
   void lists_to_cells();                 // after an overflow: cells from now on

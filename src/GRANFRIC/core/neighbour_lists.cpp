@@ -71,10 +71,17 @@ void EventDriven::list_drop(int i)
 }
 
 // Enter every particle whose list centre lies within lrad of i's into i's list and i into
-// theirs (higher_only: only particles of a higher index, for building all lists at once). i's
-// list must be empty and i in its cell. False if a list would exceed LCAP or an image shift
-// would not fit an entry (nothing changed).
+// theirs (higher_only: only particles of a higher index, for building all lists at once, with
+// i in its cell; otherwise i in no cell, so that no test per candidate is needed to leave it
+// out). i's list must be empty. False if a list would exceed LCAP or an image shift would not
+// fit an entry (nothing changed).
 bool EventDriven::list_build(int i, bool higher_only)
+{
+  return higher_only ? list_build_t<true>(i) : list_build_t<false>(i);
+}
+
+template <bool HIGHER>
+bool EventDriven::list_build_t(int i)
 {
   int cell[27];
   int8_t shift[27][3];
@@ -86,7 +93,6 @@ bool EventDriven::list_build(int i, bool higher_only)
   int fj[LCAP + 1];
   uint8_t fc[LCAP + 1];
   int nf = 0;
-  const int jmin = higher_only ? i + 1 : 0;
   for (int f = 0; f < ncell; f++) {
     // i's centre seen from the cell's image (the centres are inside the box)
     const Vec3 c = X[i] - periods(shift[f][0], shift[f][1], shift[f][2]);
@@ -95,7 +101,7 @@ bool EventDriven::list_build(int i, bool higher_only)
       // coin toss for a branch)
       fj[nf] = j;
       fc[nf] = (uint8_t) f;
-      nf += (norm2(c - X[j]) < lrad2) & (j != i) & (j >= jmin);
+      nf += HIGHER ? (norm2(c - X[j]) < lrad2) & (j > i) : norm2(c - X[j]) < lrad2;
       if (nf > LCAP) return false;
     }
   }
@@ -142,8 +148,9 @@ void EventDriven::list_rebuild(int i)
   list_drop(i);
   cell_remove(i);
   place(i);    // (the new list centre)
+  const bool built = list_build(i, false);    // (i in no cell)
   cell_insert(i);
-  if (!list_build(i, false)) {
+  if (!built) {
     lists_to_cells();
     return;
   }
