@@ -16,11 +16,12 @@ namespace granfric {
 
 
 // Lists pay in small dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to
-// about 12000 particles. Measured with bench_core against cells, elastic spheres at fraction
-// 0.45 (bench/README.md): faster at N = 4000, alike at N = 11000 within this machine's noise,
-// with about 30 % fewer instructions per collision; about 10 % slower at N = 32000, where the
-// lists' records (about 280 more bytes per particle) outgrow the cache one process gets here.
-// At fraction 0.35 the rebuilds cost more than the shorter scans save; in 2d cells are cheaper.
+// about 12000 particles. Measured with bench_core against cells, elastic spheres (bench/README.md),
+// with about a third fewer instructions per collision: at fraction 0.45 faster by 35 % at
+// N = 4000 and 11 % at 10976, alike at 32000, where the lists' records (about 280 more bytes per
+// particle) outgrow the cache one process gets here; at 0.40 faster by 24 % and 11 % at 4000 and
+// 10976, slower by 23 % at 32000. At fraction 0.35 the rebuilds cost more than the shorter
+// scans save; in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
   return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= 12000;
