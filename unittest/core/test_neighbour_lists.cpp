@@ -171,7 +171,9 @@ TEST(NeighbourLists, AutomaticChoiceAndLimits)
   EXPECT_FALSE(uses_lists(3, 0.45, true));
   EXPECT_FALSE(uses_lists(3, 0.1, false));
   EXPECT_FALSE(uses_lists(2, 0.45, false));
-  EXPECT_FALSE(uses_lists(3, 0.45, false, 13824)) << "lists beyond the cache are slower";
+  EXPECT_TRUE(uses_lists(3, 0.45, false, 13824));
+  EXPECT_FALSE(uses_lists(3, 0.45, false, (int) EventDriven::MAX_LISTS + 1))
+      << "lists beyond the cache are slower";
   EventDriven ed;
   EDOptions o;
   o.neighbours = EDOptions::LISTS;

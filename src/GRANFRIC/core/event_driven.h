@@ -309,6 +309,7 @@ class EventDriven {
   double cell_radius() const { return cell_amax; }
   double cell_size() const { return cw[0]; }    // the cell width in x (after start())
   bool uses_lists() const { return lists; }     // neighbour lists (after start())
+  static constexpr long MAX_LISTS = 40000;    // the most particles that get lists automatically
   // the width of cells the core chooses for number density n (EDOptions::cell_width = 0), with
   // sigma the largest contact distance
   static double auto_cell_width(int dim, double sigma, double n);
