@@ -40,12 +40,12 @@ void EventDriven::scan_in(int i, const int dlo[3], const int dhi[3])
   }
 }
 
-// A seeker at the present (as after its collision) is at least as late as every candidate:
-// its scan knows that at compile time (LATEST)
+// A seeker at the present (as after its collision) is at least as late as every candidate
+// (at_present()): its scan knows that at compile time (LATEST)
 template <int DIM, bool GRAV, bool FULL>
 inline void EventDriven::scan_at(int i, const int dlo[3], const int dhi[3])
 {
-  if (H[i].t == now)
+  if (at_present(i))
     scan_t<DIM, GRAV, FULL, true>(i, dlo, dhi);
   else
     scan_t<DIM, GRAV, FULL, false>(i, dlo, dhi);
@@ -240,7 +240,7 @@ void EventDriven::scan_list_t(int i)
 
 void EventDriven::scan_list(int i)
 {
-  const bool latest = H[i].t == now;    // (as scan_at())
+  const bool latest = at_present(i);
   if (opt.dim == 3)
     latest ? scan_list_t<3, true>(i) : scan_list_t<3, false>(i);
   else

@@ -662,6 +662,9 @@ class EventDriven {
   void scan_in(int i, const int dlo[3], const int dhi[3]);
   template <int DIM, bool GRAV, bool FULL>
   void scan_at(int i, const int dlo[3], const int dhi[3]);
+  // whether i's stored state is at the present: no stored time is later than now, so i is then
+  // the later one of every pair it predicts
+  bool at_present(int i) const { return H[i].t == now; }
   template <int DIM, bool GRAV, bool FULL, bool LATEST>
   void scan_t(int i, const int dlo[3], const int dhi[3]);
   // a scan in progress: particle i's stored state (read once), its best candidate so far

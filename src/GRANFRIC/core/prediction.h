@@ -51,19 +51,12 @@ inline double contact_root(double b, double c, double v0, double v1, double v2, 
 }
 
 template <int DIM>
-inline double pair_contact_time_f(double r0, double r1, double r2, double v0, double v1, double v2,
-                                  double sigma, double hf)
-{
-  const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
-  const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
-  return contact_root<DIM>(b, c, v0, v1, v2, hf);
-}
-
-template <int DIM>
 inline double pair_contact_time(double r0, double r1, double r2, double v0, double v1, double v2,
                                 double sigma, double horizon = NEVER)
 {
-  return pair_contact_time_f<DIM>(r0, r1, r2, v0, v1, v2, sigma, horizon_factor(horizon));
+  const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
+  const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
+  return contact_root<DIM>(b, c, v0, v1, v2, horizon_factor(horizon));
 }
 
 inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
