@@ -232,6 +232,11 @@ template <int DIM, bool LATEST>
 void EventDriven::scan_list_t(int i)
 {
   Seek k = seek(i);
+  // i's list rebuild predicts it afresh, so no contact from then on need be found
+  if (S[i].xt < k.t) {
+    k.t = S[i].xt;
+    k.hf = horizon_factor(k.t - k.p.t);
+  }
   const Entry *e = &NB[(size_t) i * LCAP];
   const int n = NN[i];
   for (int m = 0; m < n; m++) offer<DIM, false, LATEST>(k, e[m].j, e[m].o[0], e[m].o[1], DIM == 3 ? e[m].o[2] : 0);
