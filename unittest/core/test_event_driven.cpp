@@ -984,35 +984,43 @@ TEST(Prediction, PairContactTime)
 
 // With a horizon a contact time is either the one without (bit for bit) or NEVER, and NEVER only
 // where the contact without a horizon comes at or after the horizon: horizons around the
-// contact time itself (up to a few roundings away) and far from it, 3d and 2d, head-on pairs
-// near touching (where the lower bound the horizon uses is nearly the root) and others
+// contact time itself (0.1 ... 1e-15 of it away, across the test's margin of 1e-6), 3d and 2d;
+// head-on pairs near touching, grazing pairs (impact parameter within 1e-4 ... 1e-14 of sigma,
+// where the square root cancels most) and others
 TEST(Prediction, PairContactTimeHorizonOnlyDropsLaterContacts)
 {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  long pruned = 0, kept = 0, tight = 0;
-  for (int k = 0; k < 200000; k++) {
+  std::uniform_int_distribution<int> pick(0, 7);
+  long pruned = 0, kept = 0, tight = 0, grazing = 0;
+  for (int k = 0; k < 300000; k++) {
     const double sigma = 1.0 + 0.5 * u(rng);
-    // (from 4 sigma apart down to near touching, where the bound is within 1e-7 of the root)
-    std::uniform_int_distribution<int> pick(0, 7);
-    const double d = sigma * (1.0 + 4.0 * std::pow(10.0, -pick(rng)) * std::fabs(u(rng)));
-    const double spread = pick(rng) % 2 ? 0.01 : 1.0;    // nearly head-on, or anything
-    const Vec3 r(d, spread * u(rng) * d, spread * u(rng) * d);
-    const Vec3 v(-std::fabs(u(rng)) - 1e-3, spread * u(rng), spread * u(rng));
-    const double z = 0.3 * sigma * u(rng);    // (2d: a constant z distance)
+    Vec3 r, v;
+    const int kind = k % 3;
+    if (kind < 2) {
+      // from 4 sigma apart down to near touching; nearly head-on (kind 0) or anything
+      const double d = sigma * (1.0 + 4.0 * std::pow(10.0, -pick(rng)) * std::fabs(u(rng)));
+      const double spread = kind == 0 ? 0.01 : 1.0;
+      r = Vec3(d, spread * u(rng) * d, spread * u(rng) * d);
+      v = Vec3(-std::fabs(u(rng)) - 1e-3, spread * u(rng), spread * u(rng));
+    } else {
+      // grazing: moving along -x at an impact parameter just below sigma, offset in y and z
+      const double s = sigma * (1.0 - std::pow(10.0, -4 - 10.0 * std::fabs(u(rng))));
+      const double phi = 3.14159 * u(rng);
+      r = Vec3(sigma * (1.5 + std::fabs(u(rng))), s * std::cos(phi), s * std::sin(phi));
+      v = Vec3(-(0.1 + std::fabs(u(rng))), 0.0, 0.0);
+    }
+    const double z = kind == 2 ? r.z : 0.3 * sigma * u(rng);    // (2d: a constant z distance)
     const double f3 = pair_contact_time<3>(r.x, r.y, r.z, v.x, v.y, v.z, sigma);
     const double f2 = pair_contact_time<2>(r.x, r.y, z, v.x, v.y, 0.0, sigma);
     for (const double f : {f3, f2}) {
       if (f == NEVER) continue;
-      // around the contact (0.1 ... 1e-15 of it away), or around where a contact starts to
-      // be dropped: the lower bound c / (-2 b) (a few roundings and the margin away)
+      grazing += kind == 2;
       const double scale = std::pow(10.0, -2 * pick(rng) - 1);
       const bool in3 = f == f3;
-      const double b = in3 ? dot(r, v) : r.x * v.x + r.y * v.y;
-      const double c = (in3 ? norm2(r) : r.x * r.x + r.y * r.y + z * z) - sigma * sigma;
-      const double horizon = pick(rng) % 2 ? f * (1.0 + scale * u(rng)) : c / (-2.0 * b) * (1.0 + 2e-9 * u(rng));
+      const double horizon = f * (1.0 + scale * u(rng));
       const double h = in3 ? pair_contact_time<3>(r.x, r.y, r.z, v.x, v.y, v.z, sigma, horizon)
-                               : pair_contact_time<2>(r.x, r.y, z, v.x, v.y, 0.0, sigma, horizon);
+                           : pair_contact_time<2>(r.x, r.y, z, v.x, v.y, 0.0, sigma, horizon);
       if (h == NEVER) {
         ASSERT_GE(f, horizon) << "k " << k;
         pruned++;
@@ -1026,6 +1034,7 @@ TEST(Prediction, PairContactTimeHorizonOnlyDropsLaterContacts)
   EXPECT_GT(pruned, 10000);
   EXPECT_GT(kept, 10000);
   EXPECT_GT(tight, 1000);    // dropped within 1e-4 of the horizon
+  EXPECT_GT(grazing, 10000);
 }
 
 TEST(Prediction, CrossingTime)

@@ -61,15 +61,15 @@ template <int DIM, bool GRAV>
 inline __attribute__((always_inline)) double EventDriven::contact(const Hot &p, const Hot &q, int o0,
                                                                   int o1, int o2, double before) const
 {
-  if (q.t <= p.t) return contact_at<DIM, GRAV>(p, p.t, p.x, p.v, q, o0, o1, o2, horizon_factor(before - p.t));
+  if (q.t <= p.t) return contact_at<DIM, GRAV>(p, p.t, p.x, p.v, q, o0, o1, o2, horizon_limit(before - p.t, before));
   const double tr = q.t, dt = tr - p.t;
   const Vec3 g = opt.gravity;
   const Vec3 xa = flight_x(p.x, p.v, dt, g, GRAV), va = flight_v(p.v, dt, g);
-  return contact_at<DIM, GRAV>(p, tr, xa, va, q, o0, o1, o2, horizon_factor(before - tr));
+  return contact_at<DIM, GRAV>(p, tr, xa, va, q, o0, o1, o2, horizon_limit(before - tr, before));
 }
 
 // contact() with p's state at tr >= q.t given (position a, velocity u) and the horizon as its
-// factor hf. The x and y components go in pairs (one SSE2 operation for both): each is the
+// limit h. The x and y components go in pairs (one SSE2 operation for both): each is the
 // scalar arithmetic of pos() and vel() and of the contact time, operation by operation, so the
 // numbers are the same bit for bit.
 typedef double v2d __attribute__((vector_size(16)));
@@ -83,7 +83,7 @@ static inline v2d xy(const Vec3 &a)
 template <int DIM, bool GRAV>
 inline __attribute__((always_inline)) double EventDriven::contact_at(const Hot &p, double tr, const Vec3 &a,
                                                                      const Vec3 &u, const Hot &q, int o0,
-                                                                     int o1, int o2, double hf) const
+                                                                     int o1, int o2, double h) const
 {
   const double dtj = tr - q.t;    // q at tr
   const v2d dt = {dtj, dtj};
@@ -113,7 +113,7 @@ inline __attribute__((always_inline)) double EventDriven::contact_at(const Hot &
   const double b = DIM == 3 ? (rv[0] + rv[1]) + r2 * v2 : rv[0] + rv[1];
   const double sigma = p.a + q.a;
   const double c = ((rr[0] + rr[1]) + r2 * r2) - sigma * sigma;
-  const double tau = contact_root<DIM>(b, c, v[0], v[1], v2, hf);
+  const double tau = contact_root<DIM>(b, c, v[0], v[1], v2, h);
   if (tau == NEVER) return NEVER;
   const double t = tr + tau;
   return t < now ? now : t;
@@ -127,12 +127,12 @@ double EventDriven::pair_time(int i, int j, int o0, int o1, int o2) const
 
 // One candidate j at the image shift o (j's position + o P): kept as the seeker's best when its
 // contact time is the earliest so far. LATEST: the seeker's stored time is the latest (no
-// candidate's is later), so that its state and horizon factor are the scan's for every one.
+// candidate's is later), so that its state and horizon limit are the scan's for every one.
 template <int DIM, bool GRAV, bool LATEST>
 inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, int o0, int o1, int o2)
 {
   const Hot &q = H[j];
-  const double t = LATEST ? contact_at<DIM, GRAV>(k.p, k.p.t, k.p.x, k.p.v, q, o0, o1, o2, k.hf)
+  const double t = LATEST ? contact_at<DIM, GRAV>(k.p, k.p.t, k.p.x, k.p.v, q, o0, o1, o2, k.h)
                           : contact<DIM, GRAV>(k.p, q, o0, o1, o2, k.t);
   if (t < k.t) {
     // two particles whose last collisions were with each other (same periodic image)
@@ -140,7 +140,7 @@ inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, in
     // (tested only here, for a would-be candidate: the same outcome as skipping them)
     if (separating(k.i, j, o0, o1, o2)) return;
     k.t = t;
-    k.hf = horizon_factor(t - k.p.t);
+    k.h = horizon_limit(t - k.p.t, t);
     k.j = j;
     k.o[0] = o0, k.o[1] = o1, k.o[2] = o2;
   }
@@ -150,7 +150,7 @@ inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, in
 inline EventDriven::Seek EventDriven::seek(int i) const
 {
   const Sched &s = S[i];
-  return Seek{H[i], s.ct, horizon_factor(s.ct - H[i].t), i, -1, {0, 0, 0}};
+  return Seek{H[i], s.ct, horizon_limit(s.ct - H[i].t, s.ct), i, -1, {0, 0, 0}};
 }
 
 inline void EventDriven::settle(const Seek &k)
@@ -235,7 +235,7 @@ void EventDriven::scan_list_t(int i)
   // i's list rebuild predicts it afresh, so no contact from then on need be found
   if (S[i].xt < k.t) {
     k.t = S[i].xt;
-    k.hf = horizon_factor(k.t - k.p.t);
+    k.h = horizon_limit(k.t - k.p.t, k.t);
   }
   const Entry *e = &NB[(size_t) i * LCAP];
   const int n = NN[i];

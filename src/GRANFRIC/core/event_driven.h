@@ -669,10 +669,10 @@ class EventDriven {
   void scan_t(int i, const int dlo[3], const int dhi[3]);
   // a scan in progress: particle i's stored state (read once), its best candidate so far
   // (time t, partner j, image shift o; j = -1: the schedule's candidate stands) and the
-  // horizon factor of t seen from p's time (horizon_factor(t - p.t))
+  // horizon limit of t seen from p's time (horizon_limit(t - p.t, t))
   struct Seek {
     Hot p;
-    double t, hf;
+    double t, h;
     int i, j, o[3];
   };
   Seek seek(int i) const;            // from i's schedule
@@ -686,7 +686,7 @@ class EventDriven {
   double contact(const Hot &p, const Hot &q, int o0, int o1, int o2, double before) const;
   template <int DIM, bool GRAV>
   double contact_at(const Hot &p, double tr, const Vec3 &a, const Vec3 &u, const Hot &q, int o0, int o1,
-                    int o2, double hf) const;
+                    int o2, double h) const;
   // the canonical contact time of i and j at the image shift o (j's position + o P), >= now
   template <int DIM, bool GRAV>
   double pair_time(int i, int j, int o0, int o1, int o2) const;

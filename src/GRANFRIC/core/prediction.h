@@ -8,6 +8,7 @@
 
 #include "vec3.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -19,35 +20,43 @@ constexpr double NEVER = std::numeric_limits<double>::infinity();
 // none. A pair that already overlaps and approaches gets tau = 0. Components given one by one;
 // in 2d (DIM = 2) the relative velocity has no z component and r2 is a constant z distance.
 //
-// horizon: NEVER is also returned for a contact that certainly comes at tau >= horizon, known
-// from a lower bound of the root before the root is taken (the scans ask for contacts earlier
-// than the best candidate so far). A contact that is returned is the same number for any
-// horizon. The bound: with c = r^2 - sigma^2 > 0 and b = r.v < 0 the root tau = c / (-b +
-// sqrt(b^2 - v^2 c)) is at least c / (-2 b), and as computed at least that much less 10 roundings
-// (the square root's argument never exceeds b^2 as rounded); the margin 1e-9 covers them and
-// the roundings of the horizon and its factor, so a pruned contact would have come out >=
-// horizon.
+// horizon: NEVER is also returned for a contact that certainly comes at tau >= horizon. A
+// contact that is returned is the same number for any horizon. The scans ask for contacts
+// earlier than their best candidate so far; most candidates are not, and whether one is must
+// not cost a mispredicted branch (whether a candidate approaches is a coin toss, which a
+// branch predictor gets wrong about half the time). So the test is exact up to a margin and
+// decided without branches: with b = r.v, c = r^2 - sigma^2 and w2 = v^2 the contact time is
+// the first root of f(tau) = w2 tau^2 + 2 b tau + c (f(0) = c), and it lies at or before h
+// iff the pair approaches (b < 0), the roots are real (b^2 - w2 c >= 0) and either f(h) <= 0
+// or the vertex -b / w2 lies at or before h. The one branch, on that outcome, is rarely taken.
 //
-// The horizon as the scans carry it: a contact is pruned where c > -b horizon_factor(horizon)
-// (c, b as below). The factor holds the bound's 2 and its margin, so that a scan computes it
-// once per better candidate, not once per candidate.
-inline double horizon_factor(double horizon) { return horizon * (2.0 * (1.0 + 1e-9)); }
+// The margin: h is the horizon widened by 1e-6 of itself and by 1e-15 of the time it ends at
+// (horizon_limit), so that no root computed earlier than the horizon is dropped. The root as
+// computed lies within about 1e-7 of the first root of the quadratic of the computed b, c and
+// w2 (the square root of b^2 - w2 c, whose subtraction cancels for a grazing contact, enters a
+// sum of two positive terms), the contact time tr + tau and the horizon before - tr are each
+// rounded once, and f(h), evaluated with rounding, keeps its sign where its root lies 1e-6 of h
+// away (Prediction.PairContactTimeHorizonOnlyDropsLaterContacts).
+inline double horizon_limit(double ahead, double before)
+{
+  return ahead * (1.0 + 1e-6) + std::fabs(before) * 1e-15;
+}
 
 // The contact time from b = r.v, c = r^2 - sigma^2 and the relative velocity v (for v^2), with
-// the horizon as its factor hf
+// the horizon as its limit h
 template <int DIM>
-inline double contact_root(double b, double c, double v0, double v1, double v2, double hf)
+inline double contact_root(double b, double c, double v0, double v1, double v2, double h)
 {
-  // Few branches: whether a candidate approaches (b < 0) is a coin toss, which a branch
-  // predictor gets wrong about half the time; one branch asks whether it approaches soon enough
-  const bool soon = (b < 0.0) & !(c > -b * hf);
-  if (!soon) return NEVER;
   const double w2 = DIM == 3 ? v0 * v0 + v1 * v1 + v2 * v2 : v0 * v0 + v1 * v1;
   const double disc = b * b - w2 * c;
-  // (the root from a harmless operand where there is none, and the answer selected)
-  const bool meet = disc >= 0.0;
-  const double tau = c / (-b + std::sqrt(meet ? disc : 1.0));    // stable form of (-b - sqrt(disc))/v2
-  return meet ? (tau > 0.0 ? tau : 0.0) : NEVER;
+  const double wh = w2 * h;
+  // (b <= 0, disc >= 0 and one of f(h) <= 0 and -b - w2 h <= 0: one comparison; b = 0, where
+  // the pair does not approach, and NaN are left out after it)
+  const double fh = c + (2.0 * b + wh) * h;
+  if (!(std::max(b, std::max(-disc, std::min(fh, -b - wh))) <= 0.0)) return NEVER;
+  if (!(b < 0.0) || !(disc >= 0.0)) return NEVER;
+  const double tau = c / (-b + std::sqrt(disc));    // stable form of (-b - sqrt(disc))/v2
+  return tau > 0.0 ? tau : 0.0;
 }
 
 template <int DIM>
@@ -56,7 +65,7 @@ inline double pair_contact_time(double r0, double r1, double r2, double v0, doub
 {
   const double b = DIM == 3 ? r0 * v0 + r1 * v1 + r2 * v2 : r0 * v0 + r1 * v1;
   const double c = (r0 * r0 + r1 * r1 + r2 * r2) - sigma * sigma;
-  return contact_root<DIM>(b, c, v0, v1, v2, horizon_factor(horizon));
+  return contact_root<DIM>(b, c, v0, v1, v2, horizon_limit(horizon, horizon));
 }
 
 inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
