@@ -299,8 +299,11 @@ void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
   const int *k = img[i].k;
   double xt = NEVER;
   int xdim = 0, xdir = 0;
-  auto offer = [&](double t, int d, int dir) {
-    if (t < xt) xt = t, xdim = d, xdir = dir;
+  auto offer = [&](double t, int d, int dir) {    // (selections by masks, not branches)
+    const int e = -(int) (t < xt);
+    xt = t < xt ? t : xt;
+    xdim = (d & e) | (xdim & ~e);
+    xdir = (dir & e) | (xdir & ~e);
   };
   // the lower boundary of cell c + u in the particle's frame (k: its image, in a non-periodic
   // dimension minus its frame shift): lo + (c + u + k nc) cw in a periodic dimension, and
@@ -314,14 +317,12 @@ void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
     const bool top = !opt.periodic[d] && p.c[d] == nc[d] - 1;    // no boundary beyond an edge cell
     const bool bottom = !opt.periodic[d] && p.c[d] == 0;
     if (!GRAV || opt.gravity[d] == 0.0) {
-      // straight flight: only the boundary ahead can be reached
-      if (v > 0.0) {
-        if (top) continue;
-        offer(now + std::max(0.0, (bound(d, 1.0) - xi[d]) / v), d, 1);
-      } else if (v < 0.0) {
-        if (bottom) continue;
-        offer(now + std::max(0.0, (bound(d, 0.0) - xi[d]) / v), d, -1);
-      }
+      // straight flight: only the boundary ahead can be reached (whether it lies up or down
+      // is a coin toss: selected, not branched on; at v = 0 the time is computed and dropped)
+      const int up = v > 0.0, ahead = (up & !top) | ((v < 0.0) & !bottom);
+      const double dt = (bound(d, (double) up) - xi[d]) / v;
+      const double t[2] = {NEVER, now + (dt > 0.0 ? dt : 0.0)};
+      offer(t[ahead], d, 2 * up - 1);
       continue;
     }
     const double blo = bound(d, 0.0), bhi = bound(d, 1.0);
