@@ -205,6 +205,27 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
     settle(k);
     return;
   }
+  if (FULL) {
+    // at an edge of the grid: the cells as around() finds them, with their image shifts, and
+    // the occupied ones gathered as above
+    int cell[27], first[27], of[27], nfirst = 0;
+    int8_t shift[27][3];
+    const int ncell = around(i, cell, shift);
+    for (int f = 0; f < ncell; f++) {
+      const int j = head[cell[f]];
+      first[nfirst] = j;
+      of[nfirst] = f;
+      nfirst += j >= 0;
+    }
+    for (int f = 0; f < nfirst; f++) {
+      const int8_t *u = shift[of[f]];
+      for (int j = first[f]; j >= 0; j = img[j].next)
+        if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] + u[0] - img[j].k[0], pk[1] + u[1] - img[j].k[1],
+                                             DIM == 3 ? pk[2] + u[2] - img[j].k[2] : 0);
+    }
+    settle(k);
+    return;
+  }
   for (int dz = zlo; dz <= zhi; dz++) {
     int uz = c[2] + dz, kz = 0;
     if (uz < 0) { if (!opt.periodic[2]) continue; uz += nc[2]; kz = -1; }
