@@ -18,12 +18,11 @@ namespace granfric {
 // Lists pay in dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to about
 // 40000 particles, while their records (about 500 bytes per particle with the lists, against
 // about 220 with cells) fit the last-level cache. Measured with bench_core against cells, elastic
-// spheres on an otherwise idle machine with 32 MB of shared last-level cache (bench/README.md),
-// with about a third fewer instructions per collision: at fraction 0.45 faster by 35 % at
-// N = 4000, 11 % at 10976 and 25 - 30 % at 32000, alike at 64000, slower by 20 % at 128000; at
-// 0.40 faster by 24 %, 11 % and 18 % at 4000, 10976 and 32000. While another process shares
-// the cache, lists were slower from about 10^4 particles (by 7 - 23 % at 32000). At fraction
-// 0.35 the rebuilds cost more than the shorter scans save; in 2d cells are cheaper.
+// spheres, a machine with 32 MB of shared last-level cache (bench/README.md): about a third
+// fewer instructions per collision; at fraction 0.45 faster by 20 % at N = 4000 and 10976 and by
+// 4 - 9 % at 32000; at 0.40 faster by 8 % at 4000, alike at 10976 and 32000; beyond about
+// 5 x 10^4 particles, or while another process shares the cache, slower. At fraction 0.35 the
+// rebuilds cost more than the shorter scans save at N = 32000; in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
   return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= MAX_LISTS;
