@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // The event queue against an ordered set: the same (time, index) order under random updates,
-// ties, infinite times, far-future events and time shifts.
+// ties, infinite times, far-future events and time shifts; the following event where known.
 #include "core/event_queue.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <set>
@@ -50,6 +51,8 @@ void run_against_set(int n, unsigned seed, double spread, double p_inf, double p
       break;
     }
     ASSERT_EQ(q.top(), best.second) << "step " << s;
+    // next(), where known, is the event that follows the top one
+    if (q.next() >= 0) ASSERT_EQ(q.next(), std::next(ref.begin())->second) << "step " << s;
     now = best.first;
     auto set_time = [&](int i, double x) {
       ref.erase({t[i], i});

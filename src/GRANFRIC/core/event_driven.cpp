@@ -368,6 +368,50 @@ void EventDriven::refresh()
   dirty.clear();
 }
 
+// Ask the memory for what the event of particle e will read while the present event is
+// processed: its records and its partner's, and for each of the two the records of its first
+// candidates (the first particle of each cell around it, or its listed neighbours). Events
+// come in time order, which is random in space, so in a system larger than the cache each of
+// these is a miss; asked for one event ahead they arrive while the present one is worked on.
+void EventDriven::prefetch_event(int e) const
+{
+  if (e < 0) return;
+  __builtin_prefetch(&S[e]);
+  __builtin_prefetch(&C[e]);
+  prefetch_around(e);
+  const int q = S[e].cpartner;
+  if (q >= 0) {
+    __builtin_prefetch(&H[q]);
+    __builtin_prefetch(&C[q]);
+  }
+}
+
+void EventDriven::prefetch_around(int i) const
+{
+  __builtin_prefetch(&H[i]);
+  __builtin_prefetch(&img[i]);
+  if (lists) {
+    const Entry *e = &NB[(size_t) i * LCAP];
+    for (int m = 0; m < NN[i]; m++) __builtin_prefetch(&H[e[m].j]);
+    return;
+  }
+  // (the cells inside the grid; at its edges nothing more)
+  const int16_t *c = S[i].c;
+  const int dz1 = opt.dim == 3 ? 1 : 0;
+  if (c[0] < 1 || c[0] + 1 >= nc[0] || c[1] < 1 || c[1] + 1 >= nc[1] || c[2] < dz1 || c[2] + dz1 >= nc[2])
+    return;
+  const int *base = head.data() + (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+  for (int dz = -dz1; dz <= dz1; dz++)
+    for (int dy = -1; dy <= 1; dy++) {
+      const int *row = base + (dz * nc[1] + dy) * nc[0];
+      for (int dx = -1; dx <= 1; dx++) {
+        const int j = row[dx] & ~(row[dx] >> 31);    // (an empty cell, -1: particle 0, no branch)
+        __builtin_prefetch(&H[j]);
+        __builtin_prefetch(&img[j]);
+      }
+    }
+}
+
 EDStats EventDriven::advance_to(double t_end)
 {
   stats = EDStats();
@@ -382,6 +426,7 @@ EDStats EventDriven::advance_to(double t_end)
   crossing_cap = opt.max_collisions * (long) std::max(1, n);
   refresh();
   if (crossings_since_reorder > 4L * n) reorder();
+  const bool far = n > PREFETCH_FROM;
   size_t g = 0;
   while (n > 0) {
     const int i = queue.top();
@@ -393,6 +438,7 @@ EDStats EventDriven::advance_to(double t_end)
     }
     if (!(et < t_end)) break;
     now = et;
+    if (far) prefetch_event(queue.next());
     if (p.ekind == COLLISION) {
       if (C[p.cpartner].ncoll != p.ccount) {
         predict(i);    // the partner changed course: stale prediction

@@ -63,6 +63,13 @@ class EventQueue {
   // the particle with the earliest event (ties: the smallest index); with no finite event left,
   // some particle whose event time is infinite
   int top() const { return front.empty() ? overflow : front[0]; }
+  // the particle whose event most likely follows the top one (-1: none known), for prefetching
+  int next() const
+  {
+    const int n = (int) front.size();
+    if (n < 2) return -1;
+    return n == 2 || less(front[1], front[2]) ? front[1] : front[2];
+  }
   double top_time() const { return node[top()].key; }
   double time(int i) const { return node[i].key; }
   // particle i now has event time t
