@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // The event queue against an ordered set: the same (time, index) order under random updates,
-// ties, infinite times, far-future events and time shifts; the following event where known.
+// ties, infinite times, far-future events and time shifts; the two following events where known.
 #include "core/event_queue.h"
 
 #include <gtest/gtest.h>
@@ -53,6 +53,7 @@ void run_against_set(int n, unsigned seed, double spread, double p_inf, double p
     ASSERT_EQ(q.top(), best.second) << "step " << s;
     // next(), where known, is the event that follows the top one
     if (q.next() >= 0) ASSERT_EQ(q.next(), std::next(ref.begin())->second) << "step " << s;
+    if (q.after_next() >= 0) ASSERT_EQ(q.after_next(), std::next(ref.begin(), 2)->second) << "step " << s;
     now = best.first;
     auto set_time = [&](int i, double x) {
       ref.erase({t[i], i});

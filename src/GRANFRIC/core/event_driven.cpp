@@ -369,16 +369,19 @@ void EventDriven::refresh()
 }
 
 // Ask the memory for what the event of particle e will read while the present event is
-// processed: its records and its partner's, and for each of the two the records of its first
-// candidates (the first particle of each cell around it, or its listed neighbours). Events
-// come in time order, which is random in space, so in a system larger than the cache each of
-// these is a miss; asked for one event ahead they arrive while the present one is worked on.
-void EventDriven::prefetch_event(int e) const
+// processed: its records and its partner's, and the records of its first candidates (the first
+// particle of each cell around it, or its listed neighbours). Events come in time order, which
+// is random in space, so in a system larger than the cache each of these is a miss; asked for
+// ahead, they arrive while the present event is worked on. In two stages, because the
+// candidates are known only from the cell lists (or the neighbour list): for the event after
+// the next one (deep = false) the lines of those lists, for the next one (deep = true, the lists
+// asked for one event earlier) the candidates' records.
+void EventDriven::prefetch_event(int e, bool deep) const
 {
   if (e < 0) return;
   __builtin_prefetch(&S[e]);
   __builtin_prefetch(&C[e]);
-  prefetch_around(e);
+  prefetch_around(e, deep);
   const int q = S[e].cpartner;
   if (q >= 0) {
     __builtin_prefetch(&H[q]);
@@ -386,12 +389,17 @@ void EventDriven::prefetch_event(int e) const
   }
 }
 
-void EventDriven::prefetch_around(int i) const
+void EventDriven::prefetch_around(int i, bool deep) const
 {
   __builtin_prefetch(&H[i]);
   __builtin_prefetch(&img[i]);
   if (lists) {
     const Entry *e = &NB[(size_t) i * LCAP];
+    if (!deep) {
+      __builtin_prefetch(e);
+      __builtin_prefetch(e + 8);
+      return;
+    }
     for (int m = 0; m < NN[i]; m++) __builtin_prefetch(&H[e[m].j]);
     return;
   }
@@ -404,6 +412,11 @@ void EventDriven::prefetch_around(int i) const
   for (int dz = -dz1; dz <= dz1; dz++)
     for (int dy = -1; dy <= 1; dy++) {
       const int *row = base + (dz * nc[1] + dy) * nc[0];
+      if (!deep) {
+        __builtin_prefetch(row - 1);
+        __builtin_prefetch(row + 1);
+        continue;
+      }
       for (int dx = -1; dx <= 1; dx++) {
         const int j = row[dx] & ~(row[dx] >> 31);    // (an empty cell, -1: particle 0, no branch)
         __builtin_prefetch(&H[j]);
@@ -438,7 +451,10 @@ EDStats EventDriven::advance_to(double t_end)
     }
     if (!(et < t_end)) break;
     now = et;
-    if (far) prefetch_event(queue.next());
+    if (far) {
+      prefetch_event(queue.after_next(), false);
+      prefetch_event(queue.next(), true);
+    }
     if (p.ekind == COLLISION) {
       if (C[p.cpartner].ncoll != p.ccount) {
         predict(i);    // the partner changed course: stale prediction

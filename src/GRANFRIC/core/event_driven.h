@@ -610,12 +610,12 @@ class EventDriven {
   std::vector<int> cell_order() const;
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
-  // from how many particles on the event loop asks for the next event's records ahead
-  // (prefetch_event; performance only, no effect on the results): below, the records stay in
-  // the cache and asking costs 1 - 2 % (bench/README.md)
-  static constexpr int PREFETCH_FROM = 16384;
-  void prefetch_event(int e) const;
-  void prefetch_around(int i) const;
+  // from how many particles on the event loop asks for the next events' records ahead
+  // (prefetch_event; performance only, no effect on the results): below, the records mostly
+  // stay in the cache and asking costs 1 - 3 % (bench/README.md)
+  static constexpr int PREFETCH_FROM = 65536;
+  void prefetch_event(int e, bool deep) const;
+  void prefetch_around(int i, bool deep) const;
   void offer_both(int i, int j, int o0, int o1, int o2);
   // lazy state of internal particle i at window time t (inline: read for every candidate
   // partner and by the LAMMPS fix for every atom and step)

@@ -70,6 +70,18 @@ class EventQueue {
     if (n < 2) return -1;
     return n == 2 || less(front[1], front[2]) ? front[1] : front[2];
   }
+  // and the one after it (-1: none known)
+  int after_next() const
+  {
+    const int n = (int) front.size();
+    if (n < 3) return -1;
+    // the third of the heap: the other child of the root or a child of the second
+    const int a = less(front[1], front[2]) ? 1 : 2, b = 3 - a;
+    int best = front[b];
+    for (int c = 2 * a + 1; c <= 2 * a + 2 && c < n; c++)
+      if (less(front[c], best)) best = front[c];
+    return best;
+  }
   double top_time() const { return node[top()].key; }
   double time(int i) const { return node[i].key; }
   // particle i now has event time t
