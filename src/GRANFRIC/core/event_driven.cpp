@@ -403,8 +403,11 @@ void EventDriven::prefetch_around(int i, bool deep) const
     for (int m = 0; m < NN[i]; m++) __builtin_prefetch(&H[e[m].j]);
     return;
   }
-  // (the cells inside the grid; at its edges nothing more)
-  const int16_t *c = S[i].c;
+  // the cells around the one the particle is in, or, where its event is a crossing, the one
+  // it enters (the cells inside the grid; at its edges nothing more)
+  const Sched &p = S[i];
+  int16_t c[3] = {p.c[0], p.c[1], p.c[2]};
+  if (p.ekind == CROSSING) c[p.xdim] = (int16_t) (c[p.xdim] + p.xdir);
   const int dz1 = opt.dim == 3 ? 1 : 0;
   if (c[0] < 1 || c[0] + 1 >= nc[0] || c[1] < 1 || c[1] + 1 >= nc[1] || c[2] < dz1 || c[2] + dz1 >= nc[2])
     return;
