@@ -163,6 +163,23 @@ inline void EventDriven::settle(const Seek &k)
   s.coff[0] = k.o[0], s.coff[1] = k.o[1], s.coff[2] = k.o[2];
 }
 
+// The candidates in gathered cells, in order: first[f] heads the list of a cell reached at the
+// image shift shift[of[f]] (shift null: every shift 0)
+template <int DIM, bool GRAV, bool LATEST>
+inline __attribute__((always_inline)) void EventDriven::offer_cells(Seek &k, const int *first, int nfirst,
+                                                                   const int8_t (*shift)[3], const int *of)
+{
+  const int i = k.i;
+  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
+  const Image *IM = img.data();
+  for (int f = 0; f < nfirst; f++) {
+    const int8_t *u = shift ? shift[of[f]] : nullptr;
+    const int k0 = u ? pk[0] + u[0] : pk[0], k1 = u ? pk[1] + u[1] : pk[1], k2 = u ? pk[2] + u[2] : pk[2];
+    for (int j = first[f]; j >= 0; j = IM[j].next)
+      if (j != i) offer<DIM, GRAV, LATEST>(k, j, k0 - IM[j].k[0], k1 - IM[j].k[1], DIM == 3 ? k2 - IM[j].k[2] : 0);
+  }
+}
+
 // scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,
 // dhi = -1, +1 in every dimension) or not, known at compile time. In 2d nothing
 // moves in z (v.z = 0, g.z = 0): the z terms of the relative motion vanish except the constant
@@ -182,7 +199,6 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
   if (DIM == 3) inside = inside && c[2] + zlo >= 0 && c[2] + zhi < nc[2];
   if (inside) {
     const int n0 = nc[0], n1 = nc[1];
-    const Image *IM = img.data();
     const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
     // the first particle of every occupied cell, in cell order, gathered without branches
     // (which cells are empty is random: a branch per cell would be mispredicted often)
@@ -199,9 +215,7 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
           nfirst += j >= 0;
         }
       }
-    for (int f = 0; f < nfirst; f++)
-      for (int j = first[f]; j >= 0; j = IM[j].next)
-        if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] - IM[j].k[0], pk[1] - IM[j].k[1], DIM == 3 ? pk[2] - IM[j].k[2] : 0);
+    offer_cells<DIM, GRAV, LATEST>(k, first, nfirst, nullptr, nullptr);
     settle(k);
     return;
   }
@@ -217,12 +231,7 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
       of[nfirst] = f;
       nfirst += j >= 0;
     }
-    for (int f = 0; f < nfirst; f++) {
-      const int8_t *u = shift[of[f]];
-      for (int j = first[f]; j >= 0; j = img[j].next)
-        if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] + u[0] - img[j].k[0], pk[1] + u[1] - img[j].k[1],
-                                             DIM == 3 ? pk[2] + u[2] - img[j].k[2] : 0);
-    }
+    offer_cells<DIM, GRAV, LATEST>(k, first, nfirst, shift, of);
     settle(k);
     return;
   }

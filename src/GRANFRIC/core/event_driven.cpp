@@ -397,7 +397,7 @@ void EventDriven::prefetch_around(int i, bool deep) const
     const Entry *e = &NB[(size_t) i * LCAP];
     if (!deep) {
       __builtin_prefetch(e);
-      __builtin_prefetch(e + 8);
+      __builtin_prefetch(e + 64 / sizeof(Entry));    // (the next cache line)
       return;
     }
     for (int m = 0; m < NN[i]; m++) __builtin_prefetch(&H[e[m].j]);

@@ -686,6 +686,10 @@ class EventDriven {
   // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV, bool LATEST>
   void offer(Seek &k, int j, int o0, int o1, int o2);
+  // the candidates in the cells whose first particles a scan gathered (shift: their image
+  // shifts, the f-th at of[f]; null: none)
+  template <int DIM, bool GRAV, bool LATEST>
+  void offer_cells(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
   // the canonical contact time of stored states p and q at the image shift o (q's position +
   // o P), >= now; NEVER also where it is certainly >= before
   template <int DIM, bool GRAV>
