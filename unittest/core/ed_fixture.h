@@ -89,13 +89,15 @@ struct CoreRun {
   EDStats total;
   double time = 0.0;
 
-  // neighbours, skin: how the core finds candidates (EDOptions::neighbours, list_skin)
+  // neighbours, skin, simd: how the core finds candidates (EDOptions::neighbours, list_skin,
+  // simd)
   explicit CoreRun(const Reference &ref, long cap = 1000000, int neighbours = EDOptions::AUTO,
-                   double skin = 0.0)
+                   double skin = 0.0, bool simd = true)
   {
     EDOptions o;
     o.neighbours = neighbours;
     o.list_skin = skin;
+    o.simd = simd;
     o.dim = ref.dim;
     for (int d = 0; d < 3; d++) {
       o.lo[d] = ref.lo[d];

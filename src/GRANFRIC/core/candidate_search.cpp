@@ -8,6 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#endif
 
 namespace granfric {
 
@@ -115,8 +118,7 @@ inline __attribute__((always_inline)) double EventDriven::contact_at(const Hot &
   const double c = ((rr[0] + rr[1]) + r2 * r2) - sigma * sigma;
   const double tau = contact_root<DIM>(b, c, v[0], v[1], v2, h);
   if (tau == NEVER) return NEVER;
-  const double t = tr + tau;
-  return t < now ? now : t;
+  return at_least_now(tr + tau);
 }
 
 template <int DIM, bool GRAV>
@@ -134,16 +136,19 @@ inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, in
   const Hot &q = H[j];
   const double t = LATEST ? contact_at<DIM, GRAV>(k.p, k.p.t, k.p.x, k.p.v, q, o0, o1, o2, k.h)
                           : contact<DIM, GRAV>(k.p, q, o0, o1, o2, k.t);
-  if (t < k.t) {
-    // two particles whose last collisions were with each other (same periodic image)
-    // separate in free flight: relative motion is a straight line, they are no candidates
-    // (tested only here, for a would-be candidate: the same outcome as skipping them)
-    if (separating(k.i, j, o0, o1, o2)) return;
-    k.t = t;
-    k.h = horizon_limit(t - k.p.t, t);
-    k.j = j;
-    k.o[0] = o0, k.o[1] = o1, k.o[2] = o2;
-  }
+  // two particles whose last collisions were with each other (same periodic image)
+  // separate in free flight: relative motion is a straight line, they are no candidates
+  // (tested only here, for a would-be candidate: the same outcome as skipping them)
+  if (t < k.t && !separating(k.i, j, o0, o1, o2)) take(k, t, j, o0, o1, o2);
+}
+
+// j at the image shift o, at time t, the seeker's best candidate so far
+inline void EventDriven::take(Seek &k, double t, int j, int o0, int o1, int o2)
+{
+  k.t = t;
+  k.h = horizon_limit(t - k.p.t, t);
+  k.j = j;
+  k.o[0] = o0, k.o[1] = o1, k.o[2] = o2;
 }
 
 // a scan of i from its schedule's candidate so far, and the scan's best candidate back into it
@@ -163,6 +168,56 @@ inline void EventDriven::settle(const Seek &k)
   s.coff[0] = k.o[0], s.coff[1] = k.o[1], s.coff[2] = k.o[2];
 }
 
+// offer_cells() in 3d without gravity: the candidates as list entries, offered in lanes (as
+// many at a time as a buffer holds). False (k as it was): a shift beyond an entry's range.
+template <bool LATEST>
+bool EventDriven::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of)
+{
+  const int i = k.i;
+  const Image *IM = img.data();
+  int nb = 0;
+  if (!shift) {
+    // (every cell at i's own image: the shifts follow from the images in the lanes)
+    int buf[LANE_BUFFER];
+    for (int f = 0; f < nfirst; f++)
+      for (int j = first[f]; j >= 0; j = IM[j].next) {
+        buf[nb] = j;
+        nb += j != i;
+        if (nb == LANE_BUFFER) {
+          offer_lanes<LATEST, true>(k, nullptr, buf, nb);
+          nb = 0;
+        }
+      }
+    offer_lanes<LATEST, true>(k, nullptr, buf, nb);
+    return true;
+  }
+  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
+  const Seek start = k;
+  Entry buf[LANE_BUFFER];
+  int wide = 0;
+  for (int f = 0; f < nfirst; f++) {
+    const int8_t *u = shift[of[f]];
+    const int k0 = pk[0] + u[0], k1 = pk[1] + u[1], k2 = pk[2] + u[2];
+    for (int j = first[f]; j >= 0; j = IM[j].next) {
+      const int o0 = k0 - IM[j].k[0], o1 = k1 - IM[j].k[1], o2 = k2 - IM[j].k[2];
+      wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
+      buf[nb] = Entry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
+      nb += j != i;
+      if (nb == LANE_BUFFER) {
+        if (wide & ~255) break;
+        offer_lanes<LATEST, false>(k, buf, nullptr, nb);
+        nb = 0;
+      }
+    }
+    if (wide & ~255) {
+      k = start;
+      return false;
+    }
+  }
+  offer_lanes<LATEST, false>(k, buf, nullptr, nb);
+  return true;
+}
+
 // The candidates in gathered cells, in order: first[f] heads the list of a cell reached at the
 // image shift shift[of[f]] (shift null: every shift 0)
 template <int DIM, bool GRAV, bool LATEST>
@@ -172,6 +227,7 @@ inline __attribute__((always_inline)) void EventDriven::offer_cells(Seek &k, con
   const int i = k.i;
   const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
   const Image *IM = img.data();
+  if (DIM == 3 && !GRAV && lanes && offer_cells_lanes<LATEST>(k, first, nfirst, shift, of)) return;
   for (int f = 0; f < nfirst; f++) {
     const int8_t *u = shift ? shift[of[f]] : nullptr;
     const int k0 = u ? pk[0] + u[0] : pk[0], k1 = u ? pk[1] + u[1] : pk[1], k2 = u ? pk[2] + u[2] : pk[2];
@@ -269,7 +325,10 @@ void EventDriven::scan_list_t(int i)
   }
   const Entry *e = &NB[(size_t) i * LCAP];
   const int n = NN[i];
-  for (int m = 0; m < n; m++) offer<DIM, false, LATEST>(k, e[m].j, e[m].o[0], e[m].o[1], DIM == 3 ? e[m].o[2] : 0);
+  if (DIM == 3 && lanes)
+    offer_lanes<LATEST, false>(k, e, nullptr, n);
+  else
+    for (int m = 0; m < n; m++) offer<DIM, false, LATEST>(k, e[m].j, e[m].o[0], e[m].o[1], DIM == 3 ? e[m].o[2] : 0);
   settle(k);
 }
 
@@ -281,6 +340,162 @@ void EventDriven::scan_list(int i)
   else
     latest ? scan_list_t<2, true>(i) : scan_list_t<2, false>(i);
 }
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+bool EventDriven::have_lanes()
+{
+  return __builtin_cpu_supports("avx2");
+}
+
+// contact_root()'s horizon test in four lanes, from b, c, w2 and -b, -disc, with the horizon
+// limits h: bit l set where lane l's contact may come before h
+__attribute__((target("avx2"), always_inline)) static inline int within_lanes(__m256d b, __m256d c, __m256d w2,
+                                                                             __m256d nb, __m256d nd, __m256d h)
+{
+  const __m256d wh = _mm256_mul_pd(w2, h);
+  const __m256d fh = _mm256_add_pd(c, _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), b), wh), h));
+  const __m256d mx = _mm256_max_pd(_mm256_max_pd(_mm256_min_pd(_mm256_sub_pd(nb, wh), fh), nd), b);
+  return _mm256_movemask_pd(_mm256_cmp_pd(mx, _mm256_setzero_pd(), _CMP_LE_OQ));
+}
+
+// horizon_limit(before - tr, before) in four lanes
+__attribute__((target("avx2"), always_inline)) static inline __m256d horizon_lanes(double before, __m256d tr)
+{
+  const __m256d ahead = _mm256_sub_pd(_mm256_set1_pd(before), tr);
+  return _mm256_add_pd(_mm256_mul_pd(ahead, _mm256_set1_pd(1.0 + 1e-6)), _mm256_set1_pd(std::fabs(before) * 1e-15));
+}
+
+// offer() for the n candidates e[0..n) (3d, no gravity), four at a time. Each AVX2 lane does
+// what contact() and contact_root() do up to the horizon test: the same operations on the same
+// numbers in the same order (no contraction: AVX2 without FMA; std::max(x, y) is max_pd(y, x),
+// std::min(x, y) min_pd(y, x), down to NaN; a blend where contact() branches), so a lane passes
+// exactly where the scalar test would at the same horizon. The passing lanes' contact times
+// follow in turn from the lanes' b, c and discriminant, as contact_root() computes them; when
+// one becomes the best, the horizon shrinks and the lanes after it are tested again. The
+// outcome is that of offer() for each candidate in turn, in every bit.
+template <bool LATEST, bool CELLS>
+__attribute__((target("avx2"))) void EventDriven::offer_lanes(Seek &k, const Entry *e, const int *js, int n)
+{
+  const int i = k.i;
+  const Hot *Q = H.data();
+  const Image *IM = img.data();
+  const int *pk = img[i].k;
+  const __m256d pt = _mm256_set1_pd(k.p.t), pa = _mm256_set1_pd(k.p.a);
+  const __m256d px = _mm256_set1_pd(k.p.x.x), py = _mm256_set1_pd(k.p.x.y), pz = _mm256_set1_pd(k.p.x.z);
+  const __m256d pvx = _mm256_set1_pd(k.p.v.x), pvy = _mm256_set1_pd(k.p.v.y), pvz = _mm256_set1_pd(k.p.v.z);
+  const __m256d neg = _mm256_set1_pd(-0.0), zero = _mm256_setzero_pd();
+  const __m256d Px = _mm256_set1_pd(P.x), Py = _mm256_set1_pd(P.y), Pz = _mm256_set1_pd(P.z);
+  for (int m = 0; m < n; m += 4) {
+    const int live = n - m < 4 ? n - m : 4;    // (lanes past the end read i itself)
+    const Entry *g = CELLS ? nullptr : e + m;
+    int jl[4];
+    for (int l = 0; l < 4; l++) jl[l] = l < live ? (CELLS ? js[m + l] : g[l].j) : i;
+    const Hot *q[4] = {Q + jl[0], Q + jl[1], Q + jl[2], Q + jl[3]};
+    // lane l: x y z vx of q[l] (r) and vy vz t a (s), transposed into one vector per field
+    const __m256d r0 = _mm256_loadu_pd(&q[0]->x.x), r1 = _mm256_loadu_pd(&q[1]->x.x);
+    const __m256d r2 = _mm256_loadu_pd(&q[2]->x.x), r3 = _mm256_loadu_pd(&q[3]->x.x);
+    const __m256d s0 = _mm256_loadu_pd(&q[0]->v.y), s1 = _mm256_loadu_pd(&q[1]->v.y);
+    const __m256d s2 = _mm256_loadu_pd(&q[2]->v.y), s3 = _mm256_loadu_pd(&q[3]->v.y);
+    const __m256d ra = _mm256_unpacklo_pd(r0, r1), rb = _mm256_unpackhi_pd(r0, r1);
+    const __m256d rc = _mm256_unpacklo_pd(r2, r3), rd = _mm256_unpackhi_pd(r2, r3);
+    const __m256d sa = _mm256_unpacklo_pd(s0, s1), sb = _mm256_unpackhi_pd(s0, s1);
+    const __m256d sc = _mm256_unpacklo_pd(s2, s3), sd = _mm256_unpackhi_pd(s2, s3);
+    const __m256d X = _mm256_permute2f128_pd(ra, rc, 0x20), Z = _mm256_permute2f128_pd(ra, rc, 0x31);
+    const __m256d Y = _mm256_permute2f128_pd(rb, rd, 0x20), VX = _mm256_permute2f128_pd(rb, rd, 0x31);
+    const __m256d VY = _mm256_permute2f128_pd(sa, sc, 0x20), T = _mm256_permute2f128_pd(sa, sc, 0x31);
+    const __m256d VZ = _mm256_permute2f128_pd(sb, sd, 0x20), A = _mm256_permute2f128_pd(sb, sd, 0x31);
+    // the seeker at tr = the later of the two stored times (contact())
+    __m256d tr = pt, ax = px, ay = py, az = pz, ux = pvx, uy = pvy, uz = pvz;
+    if (!LATEST) {
+      const __m256d later = _mm256_cmp_pd(T, pt, _CMP_NLE_UQ), dt = _mm256_sub_pd(T, pt);
+      const Vec3 gv = opt.gravity;    // (zero: flight_v's arithmetic)
+      tr = _mm256_blendv_pd(pt, T, later);
+      ax = _mm256_blendv_pd(px, _mm256_add_pd(px, _mm256_mul_pd(dt, pvx)), later);
+      ay = _mm256_blendv_pd(py, _mm256_add_pd(py, _mm256_mul_pd(dt, pvy)), later);
+      az = _mm256_blendv_pd(pz, _mm256_add_pd(pz, _mm256_mul_pd(dt, pvz)), later);
+      ux = _mm256_blendv_pd(pvx, _mm256_add_pd(pvx, _mm256_mul_pd(dt, _mm256_set1_pd(gv.x))), later);
+      uy = _mm256_blendv_pd(pvy, _mm256_add_pd(pvy, _mm256_mul_pd(dt, _mm256_set1_pd(gv.y))), later);
+      uz = _mm256_blendv_pd(pvz, _mm256_add_pd(pvz, _mm256_mul_pd(dt, _mm256_set1_pd(gv.z))), later);
+    }
+    // q at tr, and the separation
+    const __m256d dq = _mm256_sub_pd(tr, T);
+    __m256d rx = _mm256_sub_pd(ax, _mm256_add_pd(X, _mm256_mul_pd(dq, VX)));
+    __m256d ry = _mm256_sub_pd(ay, _mm256_add_pd(Y, _mm256_mul_pd(dq, VY)));
+    __m256d rz = _mm256_sub_pd(az, _mm256_add_pd(Z, _mm256_mul_pd(dq, VZ)));
+    // image shifts as doubles (subtracting 0 P where a lane has none leaves it as it is; lanes
+    // past the end are not used): a list entry's shift bytes, or i's image less the candidate's
+    __m128i o0, o1, o2;
+    if (CELLS) {
+      const __m128i k0 = _mm_loadu_si128((const __m128i *) IM[jl[0]].k), k1 = _mm_loadu_si128((const __m128i *) IM[jl[1]].k);
+      const __m128i k2 = _mm_loadu_si128((const __m128i *) IM[jl[2]].k), k3 = _mm_loadu_si128((const __m128i *) IM[jl[3]].k);
+      const __m128i ka = _mm_unpacklo_epi32(k0, k1), kb = _mm_unpacklo_epi32(k2, k3);
+      const __m128i kc = _mm_unpackhi_epi32(k0, k1), kd = _mm_unpackhi_epi32(k2, k3);
+      o0 = _mm_sub_epi32(_mm_set1_epi32(pk[0]), _mm_unpacklo_epi64(ka, kb));
+      o1 = _mm_sub_epi32(_mm_set1_epi32(pk[1]), _mm_unpackhi_epi64(ka, kb));
+      o2 = _mm_sub_epi32(_mm_set1_epi32(pk[2]), _mm_unpacklo_epi64(kc, kd));
+    } else {
+      const __m128i sh = _mm256_castsi256_si128(
+          _mm256_permutevar8x32_epi32(_mm256_loadu_si256((const __m256i *) g), _mm256_setr_epi32(1, 3, 5, 7, 1, 3, 5, 7)));
+      o0 = _mm_srai_epi32(_mm_slli_epi32(sh, 24), 24);
+      o1 = _mm_srai_epi32(_mm_slli_epi32(sh, 16), 24);
+      o2 = _mm_srai_epi32(_mm_slli_epi32(sh, 8), 24);
+    }
+    rx = _mm256_sub_pd(rx, _mm256_mul_pd(_mm256_cvtepi32_pd(o0), Px));
+    ry = _mm256_sub_pd(ry, _mm256_mul_pd(_mm256_cvtepi32_pd(o1), Py));
+    rz = _mm256_sub_pd(rz, _mm256_mul_pd(_mm256_cvtepi32_pd(o2), Pz));
+    const __m256d vx = _mm256_sub_pd(ux, VX), vy = _mm256_sub_pd(uy, VY), vz = _mm256_sub_pd(uz, VZ);
+    const __m256d b = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(rx, vx), _mm256_mul_pd(ry, vy)), _mm256_mul_pd(rz, vz));
+    const __m256d sig = _mm256_add_pd(pa, A);
+    const __m256d rr = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(rx, rx), _mm256_mul_pd(ry, ry)), _mm256_mul_pd(rz, rz));
+    const __m256d c = _mm256_sub_pd(rr, _mm256_mul_pd(sig, sig));
+    const __m256d w2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(vx, vx), _mm256_mul_pd(vy, vy)), _mm256_mul_pd(vz, vz));
+    const __m256d disc = _mm256_sub_pd(_mm256_mul_pd(b, b), _mm256_mul_pd(w2, c));
+    // contact_root()'s tests: the horizon, then b < 0 and disc >= 0
+    const __m256d nb = _mm256_xor_pd(b, neg), nd = _mm256_xor_pd(disc, neg);
+    const int real = _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(b, zero, _CMP_LT_OQ),
+                                                      _mm256_cmp_pd(disc, zero, _CMP_GE_OQ))) & ((1 << live) - 1);
+    int pass = real & within_lanes(b, c, w2, nb, nd, LATEST ? _mm256_set1_pd(k.h) : horizon_lanes(k.t, tr));
+    if (!pass) continue;
+    double bl[4], cl[4], dl[4], tl[4];
+    _mm256_storeu_pd(bl, b);
+    _mm256_storeu_pd(cl, c);
+    _mm256_storeu_pd(dl, disc);
+    _mm256_storeu_pd(tl, tr);
+    while (pass) {
+      const int l = __builtin_ctz(pass);
+      pass &= pass - 1;
+      const double tau = cl[l] / (-bl[l] + std::sqrt(dl[l]));
+      const double t = at_least_now(tl[l] + (tau > 0.0 ? tau : 0.0));
+      const int j = jl[l];
+      const int o0 = CELLS ? pk[0] - IM[j].k[0] : g[l].o[0], o1 = CELLS ? pk[1] - IM[j].k[1] : g[l].o[1];
+      const int o2 = CELLS ? pk[2] - IM[j].k[2] : g[l].o[2];
+      if (t < k.t && !separating(i, j, o0, o1, o2)) {
+        take(k, t, j, o0, o1, o2);
+        // the lanes after l at the new horizon
+        pass &= within_lanes(b, c, w2, nb, nd, LATEST ? _mm256_set1_pd(k.h) : horizon_lanes(k.t, tr));
+      }
+    }
+  }
+}
+#else
+bool EventDriven::have_lanes()
+{
+  return false;
+}
+
+template <bool LATEST, bool CELLS>
+void EventDriven::offer_lanes(Seek &k, const Entry *e, const int *js, int n)
+{
+  const int *pk = img[k.i].k;
+  for (int m = 0; m < n; m++) {
+    const int j = CELLS ? js[m] : e[m].j;
+    if (CELLS)
+      offer<3, false, LATEST>(k, j, pk[0] - img[j].k[0], pk[1] - img[j].k[1], pk[2] - img[j].k[2]);
+    else
+      offer<3, false, LATEST>(k, j, e[m].o[0], e[m].o[1], e[m].o[2]);
+  }
+}
+#endif
 
 long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) const
 {

@@ -129,6 +129,9 @@ struct EDOptions {
   // > 0: the skin of neighbour lists in units of the largest contact distance sigma (lists hold
   // the pairs whose list centres lie within sigma (1 + skin)); 0: the automatic skin
   double list_skin = 0.0;
+  // true: list scans test four candidates at once in AVX2 lanes where the processor has them
+  // (the same candidates are found: the trajectories are the same bits); false: one at a time
+  bool simd = true;
 };
 
 struct EDStats {
@@ -308,6 +311,7 @@ class EventDriven {
   // the largest radius the cell grid of the last start() admits
   double cell_radius() const { return cell_amax; }
   double cell_size() const { return cw[0]; }    // the cell width in x (after start())
+  static bool have_lanes();              // the processor has AVX2 (EDOptions::simd can use it)
   bool uses_lists() const { return lists; }     // neighbour lists (after start())
   static constexpr long MAX_LISTS = 40000;    // the most particles that get lists automatically
   // the width of cells the core chooses for number density n (EDOptions::cell_width = 0), with
@@ -589,6 +593,8 @@ class EventDriven {
   void scan_list(int i);
   template <int DIM, bool LATEST>
   void scan_list_t(int i);
+  bool lanes = false;                    // offer_lanes() where it applies (opt.simd, AVX2)
+  static constexpr int LANE_BUFFER = 64; // candidates of a cell scan offered at once
   void predict_all_lists();
   bool started = false;                  // start() done since resize()
   std::vector<int> dirty;                // external indices changed since the last window
@@ -686,6 +692,14 @@ class EventDriven {
   // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV, bool LATEST>
   void offer(Seek &k, int j, int o0, int o1, int o2);
+  void take(Seek &k, double t, int j, int o0, int o1, int o2);
+  // offer() for each of the n candidates e[0..n) in turn, in 3d without gravity; four at once
+  // (CELLS: the candidates js[0..n) at i's own image, else the list entries e[0..n))
+  template <bool LATEST, bool CELLS>
+  void offer_lanes(Seek &k, const Entry *e, const int *js, int n);
+  template <bool LATEST>
+  bool offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
+  double at_least_now(double t) const { return t < now ? now : t; }    // (a contact time)
   // the candidates in the cells whose first particles a scan gathered (shift: their image
   // shifts, the f-th at of[f]; null: none)
   template <int DIM, bool GRAV, bool LATEST>
