@@ -19,9 +19,10 @@ namespace granfric {
 // 40000 particles, while their records (about 500 bytes per particle with the lists, against
 // about 220 with cells) fit the last-level cache. Measured with bench_core against cells, elastic
 // spheres, a machine with 32 MB of shared last-level cache (bench/README.md): about a third
-// fewer instructions per collision; at fraction 0.45 faster by 20 % at N = 4000 and 10976 and by
-// 4 - 9 % at 32000; at 0.40 faster by 8 % at 4000, alike at 10976 and 32000; beyond about
-// 5 x 10^4 particles, or while another process shares the cache, slower. At fraction 0.35 the
+// fewer instructions per collision; with both testing candidates in AVX2 lanes, at fraction 0.45
+// faster by 25 % at N = 4000 and by 2 - 14 % at 10976 - 32000, at 0.40 faster by 12 % at 4000
+// and 5 % at 10976, 3 - 8 % slower at 32000; beyond about 5 x 10^4 particles, or while another
+// process shares the cache, slower. At fraction 0.35 the
 // rebuilds cost more than the shorter scans save at N = 32000; in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
