@@ -19,10 +19,10 @@ namespace granfric {
 // 40000 particles, while their records (about 500 bytes per particle with the lists, against
 // about 220 with cells) fit the last-level cache. Measured with bench_core against cells, elastic
 // spheres, a machine with 32 MB of shared last-level cache (bench/README.md): about a third
-// fewer instructions per collision; with both testing candidates in AVX2 lanes, at fraction 0.45
-// faster by 25 % at N = 4000 and by 2 - 14 % at 10976 - 32000, at 0.40 faster by 12 % at 4000
-// and 5 % at 10976, 3 - 8 % slower at 32000; beyond about 5 x 10^4 particles, or while another
-// process shares the cache, slower. At fraction 0.35 the
+// fewer instructions per collision; with both testing candidates in AVX2 lanes and the skin at
+// 0.6, at fraction 0.45 faster by 31 % at N = 4000 and by 9 - 25 % at 10976 - 32000, at 0.40 by
+// 22 % at 4000 and 15 % at 10976, alike at 32000; beyond about 5 x 10^4 particles, or while
+// another process shares the cache, slower. At fraction 0.35 the
 // rebuilds cost more than the shorter scans save at N = 32000; in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
@@ -45,7 +45,9 @@ void EventDriven::setup_lists(double sigma)
   NB.clear();
   NN.clear();
   if (!lists) return;
-  const double skin = opt.list_skin > 0.0 ? opt.list_skin : 0.4;    // (measured: 0.3 - 0.5 alike)
+  // (measured with the candidates in lanes: 0.6 faster than 0.4 by 3 - 8 %, 0.7 and 0.8 alike
+  // or slower; bench/README.md)
+  const double skin = opt.list_skin > 0.0 ? opt.list_skin : 0.6;
   lskin = 0.5 * skin * sigma;
   const double lrad = (sigma + 2.0 * lskin) * (1.0 + 1e-9);
   lrad2 = lrad * lrad;
