@@ -8,9 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <immintrin.h>
-#endif
 
 namespace granfric {
 
@@ -140,15 +137,6 @@ inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, in
   // separate in free flight: relative motion is a straight line, they are no candidates
   // (tested only here, for a would-be candidate: the same outcome as skipping them)
   if (t < k.t && !separating(k.i, j, o0, o1, o2)) take(k, t, j, o0, o1, o2);
-}
-
-// j at the image shift o, at time t, the seeker's best candidate so far
-inline void EventDriven::take(Seek &k, double t, int j, int o0, int o1, int o2)
-{
-  k.t = t;
-  k.h = horizon_limit(t - k.p.t, t);
-  k.j = j;
-  k.o[0] = o0, k.o[1] = o1, k.o[2] = o2;
 }
 
 // a scan of i from its schedule's candidate so far, and the scan's best candidate back into it
@@ -341,143 +329,8 @@ void EventDriven::scan_list(int i)
     latest ? scan_list_t<2, true>(i) : scan_list_t<2, false>(i);
 }
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-bool EventDriven::have_lanes()
-{
-  return __builtin_cpu_supports("avx2");
-}
-
-// contact_root()'s horizon test in four lanes, from b, c, w2 and -b, -disc, with the horizon
-// limits h: bit l set where lane l's contact may come before h
-__attribute__((target("avx2"), always_inline)) static inline int within_lanes(__m256d b, __m256d c, __m256d w2,
-                                                                             __m256d nb, __m256d nd, __m256d h)
-{
-  const __m256d wh = _mm256_mul_pd(w2, h);
-  const __m256d fh = _mm256_add_pd(c, _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), b), wh), h));
-  const __m256d mx = _mm256_max_pd(_mm256_max_pd(_mm256_min_pd(_mm256_sub_pd(nb, wh), fh), nd), b);
-  return _mm256_movemask_pd(_mm256_cmp_pd(mx, _mm256_setzero_pd(), _CMP_LE_OQ));
-}
-
-// horizon_limit(before - tr, before) in four lanes
-__attribute__((target("avx2"), always_inline)) static inline __m256d horizon_lanes(double before, __m256d tr)
-{
-  const __m256d ahead = _mm256_sub_pd(_mm256_set1_pd(before), tr);
-  return _mm256_add_pd(_mm256_mul_pd(ahead, _mm256_set1_pd(1.0 + 1e-6)), _mm256_set1_pd(std::fabs(before) * 1e-15));
-}
-
-// offer() for the n candidates e[0..n) (3d, no gravity), four at a time. Each AVX2 lane does
-// what contact() and contact_root() do up to the horizon test: the same operations on the same
-// numbers in the same order (no contraction: AVX2 without FMA; std::max(x, y) is max_pd(y, x),
-// std::min(x, y) min_pd(y, x), down to NaN; a blend where contact() branches), so a lane passes
-// exactly where the scalar test would at the same horizon. The passing lanes' contact times
-// follow in turn from the lanes' b, c and discriminant, as contact_root() computes them; when
-// one becomes the best, the horizon shrinks and the lanes after it are tested again. The
-// outcome is that of offer() for each candidate in turn, in every bit.
-template <bool LATEST, bool CELLS>
-__attribute__((target("avx2"))) void EventDriven::offer_lanes(Seek &k, const Entry *e, const int *js, int n)
-{
-  const int i = k.i;
-  const Hot *Q = H.data();
-  const Image *IM = img.data();
-  const int *pk = img[i].k;
-  const __m256d pt = _mm256_set1_pd(k.p.t), pa = _mm256_set1_pd(k.p.a);
-  const __m256d px = _mm256_set1_pd(k.p.x.x), py = _mm256_set1_pd(k.p.x.y), pz = _mm256_set1_pd(k.p.x.z);
-  const __m256d pvx = _mm256_set1_pd(k.p.v.x), pvy = _mm256_set1_pd(k.p.v.y), pvz = _mm256_set1_pd(k.p.v.z);
-  const __m256d neg = _mm256_set1_pd(-0.0), zero = _mm256_setzero_pd();
-  const __m256d Px = _mm256_set1_pd(P.x), Py = _mm256_set1_pd(P.y), Pz = _mm256_set1_pd(P.z);
-  for (int m = 0; m < n; m += 4) {
-    const int live = n - m < 4 ? n - m : 4;    // (lanes past the end read i itself)
-    const Entry *g = CELLS ? nullptr : e + m;
-    int jl[4];
-    for (int l = 0; l < 4; l++) jl[l] = l < live ? (CELLS ? js[m + l] : g[l].j) : i;
-    const Hot *q[4] = {Q + jl[0], Q + jl[1], Q + jl[2], Q + jl[3]};
-    // lane l: x y z vx of q[l] (r) and vy vz t a (s), transposed into one vector per field
-    const __m256d r0 = _mm256_loadu_pd(&q[0]->x.x), r1 = _mm256_loadu_pd(&q[1]->x.x);
-    const __m256d r2 = _mm256_loadu_pd(&q[2]->x.x), r3 = _mm256_loadu_pd(&q[3]->x.x);
-    const __m256d s0 = _mm256_loadu_pd(&q[0]->v.y), s1 = _mm256_loadu_pd(&q[1]->v.y);
-    const __m256d s2 = _mm256_loadu_pd(&q[2]->v.y), s3 = _mm256_loadu_pd(&q[3]->v.y);
-    const __m256d ra = _mm256_unpacklo_pd(r0, r1), rb = _mm256_unpackhi_pd(r0, r1);
-    const __m256d rc = _mm256_unpacklo_pd(r2, r3), rd = _mm256_unpackhi_pd(r2, r3);
-    const __m256d sa = _mm256_unpacklo_pd(s0, s1), sb = _mm256_unpackhi_pd(s0, s1);
-    const __m256d sc = _mm256_unpacklo_pd(s2, s3), sd = _mm256_unpackhi_pd(s2, s3);
-    const __m256d X = _mm256_permute2f128_pd(ra, rc, 0x20), Z = _mm256_permute2f128_pd(ra, rc, 0x31);
-    const __m256d Y = _mm256_permute2f128_pd(rb, rd, 0x20), VX = _mm256_permute2f128_pd(rb, rd, 0x31);
-    const __m256d VY = _mm256_permute2f128_pd(sa, sc, 0x20), T = _mm256_permute2f128_pd(sa, sc, 0x31);
-    const __m256d VZ = _mm256_permute2f128_pd(sb, sd, 0x20), A = _mm256_permute2f128_pd(sb, sd, 0x31);
-    // the seeker at tr = the later of the two stored times (contact())
-    __m256d tr = pt, ax = px, ay = py, az = pz, ux = pvx, uy = pvy, uz = pvz;
-    if (!LATEST) {
-      const __m256d later = _mm256_cmp_pd(T, pt, _CMP_NLE_UQ), dt = _mm256_sub_pd(T, pt);
-      const Vec3 gv = opt.gravity;    // (zero: flight_v's arithmetic)
-      tr = _mm256_blendv_pd(pt, T, later);
-      ax = _mm256_blendv_pd(px, _mm256_add_pd(px, _mm256_mul_pd(dt, pvx)), later);
-      ay = _mm256_blendv_pd(py, _mm256_add_pd(py, _mm256_mul_pd(dt, pvy)), later);
-      az = _mm256_blendv_pd(pz, _mm256_add_pd(pz, _mm256_mul_pd(dt, pvz)), later);
-      ux = _mm256_blendv_pd(pvx, _mm256_add_pd(pvx, _mm256_mul_pd(dt, _mm256_set1_pd(gv.x))), later);
-      uy = _mm256_blendv_pd(pvy, _mm256_add_pd(pvy, _mm256_mul_pd(dt, _mm256_set1_pd(gv.y))), later);
-      uz = _mm256_blendv_pd(pvz, _mm256_add_pd(pvz, _mm256_mul_pd(dt, _mm256_set1_pd(gv.z))), later);
-    }
-    // q at tr, and the separation
-    const __m256d dq = _mm256_sub_pd(tr, T);
-    __m256d rx = _mm256_sub_pd(ax, _mm256_add_pd(X, _mm256_mul_pd(dq, VX)));
-    __m256d ry = _mm256_sub_pd(ay, _mm256_add_pd(Y, _mm256_mul_pd(dq, VY)));
-    __m256d rz = _mm256_sub_pd(az, _mm256_add_pd(Z, _mm256_mul_pd(dq, VZ)));
-    // image shifts as doubles (subtracting 0 P where a lane has none leaves it as it is; lanes
-    // past the end are not used): a list entry's shift bytes, or i's image less the candidate's
-    __m128i o0, o1, o2;
-    if (CELLS) {
-      const __m128i k0 = _mm_loadu_si128((const __m128i *) IM[jl[0]].k), k1 = _mm_loadu_si128((const __m128i *) IM[jl[1]].k);
-      const __m128i k2 = _mm_loadu_si128((const __m128i *) IM[jl[2]].k), k3 = _mm_loadu_si128((const __m128i *) IM[jl[3]].k);
-      const __m128i ka = _mm_unpacklo_epi32(k0, k1), kb = _mm_unpacklo_epi32(k2, k3);
-      const __m128i kc = _mm_unpackhi_epi32(k0, k1), kd = _mm_unpackhi_epi32(k2, k3);
-      o0 = _mm_sub_epi32(_mm_set1_epi32(pk[0]), _mm_unpacklo_epi64(ka, kb));
-      o1 = _mm_sub_epi32(_mm_set1_epi32(pk[1]), _mm_unpackhi_epi64(ka, kb));
-      o2 = _mm_sub_epi32(_mm_set1_epi32(pk[2]), _mm_unpacklo_epi64(kc, kd));
-    } else {
-      const __m128i sh = _mm256_castsi256_si128(
-          _mm256_permutevar8x32_epi32(_mm256_loadu_si256((const __m256i *) g), _mm256_setr_epi32(1, 3, 5, 7, 1, 3, 5, 7)));
-      o0 = _mm_srai_epi32(_mm_slli_epi32(sh, 24), 24);
-      o1 = _mm_srai_epi32(_mm_slli_epi32(sh, 16), 24);
-      o2 = _mm_srai_epi32(_mm_slli_epi32(sh, 8), 24);
-    }
-    rx = _mm256_sub_pd(rx, _mm256_mul_pd(_mm256_cvtepi32_pd(o0), Px));
-    ry = _mm256_sub_pd(ry, _mm256_mul_pd(_mm256_cvtepi32_pd(o1), Py));
-    rz = _mm256_sub_pd(rz, _mm256_mul_pd(_mm256_cvtepi32_pd(o2), Pz));
-    const __m256d vx = _mm256_sub_pd(ux, VX), vy = _mm256_sub_pd(uy, VY), vz = _mm256_sub_pd(uz, VZ);
-    const __m256d b = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(rx, vx), _mm256_mul_pd(ry, vy)), _mm256_mul_pd(rz, vz));
-    const __m256d sig = _mm256_add_pd(pa, A);
-    const __m256d rr = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(rx, rx), _mm256_mul_pd(ry, ry)), _mm256_mul_pd(rz, rz));
-    const __m256d c = _mm256_sub_pd(rr, _mm256_mul_pd(sig, sig));
-    const __m256d w2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(vx, vx), _mm256_mul_pd(vy, vy)), _mm256_mul_pd(vz, vz));
-    const __m256d disc = _mm256_sub_pd(_mm256_mul_pd(b, b), _mm256_mul_pd(w2, c));
-    // contact_root()'s tests: the horizon, then b < 0 and disc >= 0
-    const __m256d nb = _mm256_xor_pd(b, neg), nd = _mm256_xor_pd(disc, neg);
-    const int real = _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(b, zero, _CMP_LT_OQ),
-                                                      _mm256_cmp_pd(disc, zero, _CMP_GE_OQ))) & ((1 << live) - 1);
-    int pass = real & within_lanes(b, c, w2, nb, nd, LATEST ? _mm256_set1_pd(k.h) : horizon_lanes(k.t, tr));
-    if (!pass) continue;
-    double bl[4], cl[4], dl[4], tl[4];
-    _mm256_storeu_pd(bl, b);
-    _mm256_storeu_pd(cl, c);
-    _mm256_storeu_pd(dl, disc);
-    _mm256_storeu_pd(tl, tr);
-    while (pass) {
-      const int l = __builtin_ctz(pass);
-      pass &= pass - 1;
-      const double tau = cl[l] / (-bl[l] + std::sqrt(dl[l]));
-      const double t = at_least_now(tl[l] + (tau > 0.0 ? tau : 0.0));
-      const int j = jl[l];
-      const int o0 = CELLS ? pk[0] - IM[j].k[0] : g[l].o[0], o1 = CELLS ? pk[1] - IM[j].k[1] : g[l].o[1];
-      const int o2 = CELLS ? pk[2] - IM[j].k[2] : g[l].o[2];
-      if (t < k.t && !separating(i, j, o0, o1, o2)) {
-        take(k, t, j, o0, o1, o2);
-        // the lanes after l at the new horizon
-        pass &= within_lanes(b, c, w2, nb, nd, LATEST ? _mm256_set1_pd(k.h) : horizon_lanes(k.t, tr));
-      }
-    }
-  }
-}
-#else
+#if !GRANFRIC_LANES
+// (without AVX2 lanes, see candidate_lanes.cpp: one candidate at a time)
 bool EventDriven::have_lanes()
 {
   return false;

@@ -20,9 +20,10 @@
 //
 // One class, its roles in one file each: the event loop, pair collisions and the particles'
 // slots (event_driven.cpp), the cell grid and its crossings (cells.cpp), the search for
-// collision candidates (candidate_search.cpp), neighbour lists (neighbour_lists.cpp), wall motion
-// and contact times (wall_motion.cpp), the response at walls (wall_response.cpp), statistics and
-// records of the collisions (statistics.cpp). The collision laws are collision.h, their table
+// collision candidates (candidate_search.cpp; four at a time in AVX2 lanes: candidate_lanes.cpp),
+// neighbour lists (neighbour_lists.cpp), wall motion and contact times (wall_motion.cpp), the
+// response at walls (wall_response.cpp), statistics and records of the collisions
+// (statistics.cpp). The collision laws are collision.h, their table
 // law_table.h, driving by kicks kicks.h.
 #ifndef GRANFRIC_CORE_EVENT_DRIVEN_H
 #define GRANFRIC_CORE_EVENT_DRIVEN_H
@@ -39,6 +40,14 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+// the candidate search tests four candidates at once in AVX2 lanes (candidate_lanes.cpp) where
+// the compiler can target them function by function; elsewhere one at a time
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define GRANFRIC_LANES 1
+#else
+#define GRANFRIC_LANES 0
+#endif
 
 namespace granfric {
 
@@ -692,7 +701,13 @@ class EventDriven {
   // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV, bool LATEST>
   void offer(Seek &k, int j, int o0, int o1, int o2);
-  void take(Seek &k, double t, int j, int o0, int o1, int o2);
+  void take(Seek &k, double t, int j, int o0, int o1, int o2)    // (the best so far)
+  {
+    k.t = t;
+    k.h = horizon_limit(t - k.p.t, t);
+    k.j = j;
+    k.o[0] = o0, k.o[1] = o1, k.o[2] = o2;
+  }
   // offer() for each of the n candidates e[0..n) in turn, in 3d without gravity; four at once
   // (CELLS: the candidates js[0..n) at i's own image, else the list entries e[0..n))
   template <bool LATEST, bool CELLS>
