@@ -23,7 +23,7 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
     throw std::invalid_argument("law table must have (ntypes+1)^2 entries");
   if (nt > 32767) throw std::invalid_argument("at most 32767 particle types");
   opt = o;
-  lanes = o.simd && o.dim == 3 && norm2(o.gravity) == 0.0 && have_lanes();
+  lanes = o.simd && have_lanes();    // (the scans that use them are 3d without gravity)
   // the last collision times exist only with the TC model
   if (o.tc > 0.0 && TL.size() != H.size()) TL.assign(H.size(), -INF);
   if (!(o.tc > 0.0)) TL.clear();

@@ -138,8 +138,9 @@ struct EDOptions {
   // > 0: the skin of neighbour lists in units of the largest contact distance sigma (lists hold
   // the pairs whose list centres lie within sigma (1 + skin)); 0: the automatic skin
   double list_skin = 0.0;
-  // true: list scans test four candidates at once in AVX2 lanes where the processor has them
-  // (the same candidates are found: the trajectories are the same bits); false: one at a time
+  // true: scans in 3d without gravity (cells or lists) test four candidates at once in AVX2
+  // lanes where the processor has them (the same candidates are found: the trajectories are the
+  // same bits); false: one at a time
   bool simd = true;
 };
 

@@ -22,8 +22,8 @@ namespace granfric {
 // fewer instructions per collision; with both testing candidates in AVX2 lanes and the skin at
 // 0.6, at fraction 0.45 faster by 31 % at N = 4000 and by 9 - 25 % at 10976 - 32000, at 0.40 by
 // 22 % at 4000 and 15 % at 10976, alike at 32000; beyond about 5 x 10^4 particles, or while
-// another process shares the cache, slower. At fraction 0.35 the
-// rebuilds cost more than the shorter scans save at N = 32000; in 2d cells are cheaper.
+// another process shares the cache, slower. At fraction 0.35 lists and cells are alike at
+// N = 32000 (lists with a skin of 0.8 faster by 5 % at 4000); in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
   return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= MAX_LISTS;
