@@ -215,6 +215,30 @@ TEST(CollisionLimits, WaltonZeroFrictionIsSmooth)
   }
 }
 
+// A smooth law (rough with beta = -1) skips the tangential arithmetic: it gives the numbers of
+// the full map with rt = -1 (Walton with rt_max = -1 and a finite mu never reaches the Coulomb
+// limit), equal as doubles (== : a zero may differ in sign), and leaves the spins as they were
+TEST(CollisionLimits, SmoothShortcutIsTheFullMap)
+{
+  Rng rng(18);
+  auto same = [](const Vec3 &a, const Vec3 &b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+  for (int k = 0; k < 20000; ++k) {
+    const bool dim2 = k % 2;
+    Body b1 = random_body(rng, dim2), b2 = k % 7 == 0 ? Body::wall(rng.gvec(dim2)) : random_body(rng, dim2);
+    Vec3 n = rng.unit(dim2);
+    if (dot(contact_velocity(b1, b2, n), n) > 0.0) n = -n;
+    const double r = rng.uni(0, 1);
+    const Collision cut = collide(LawParams::rough(r, -1.0), b1, b2, n);
+    const Collision full = collide(LawParams::walton(r, rng.loguni(1e-3, 1e3), -1.0), b1, b2, n);
+    ASSERT_FALSE(full.sliding);
+    EXPECT_TRUE(same(cut.v1, full.v1) && same(cut.v2, full.v2) && same(cut.dP, full.dP)) << k;
+    EXPECT_TRUE(same(cut.w1, full.w1) && same(cut.w2, full.w2)) << k;
+    EXPECT_TRUE(cut.dE == full.dE && cut.gn == full.gn && cut.gt == full.gt && cut.rt == full.rt) << k;
+    EXPECT_TRUE(cut.cos_gamma == full.cos_gamma && cut.energy_created == full.energy_created) << k;
+    EXPECT_TRUE(same(cut.w1, b1.w) && (b2.is_wall() || same(cut.w2, b2.w))) << k;
+  }
+}
+
 TEST(CollisionLimits, JenkinsZhangEqualsWaltonForEqualFriction)
 {
   Rng rng(9);

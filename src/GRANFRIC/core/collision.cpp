@@ -14,24 +14,21 @@ double Collision::gamma() const
 }
 
 // 1/m and a^2/I of a body; both 0 for a wall
-static inline void inverse_inertia(const Body &b, double &inv_m, double &a2_over_I)
+static inline double inverse_mass(const Body &b)
 {
-  if (b.is_wall()) {
-    inv_m = 0.0;
-    a2_over_I = 0.0;
-  } else {
-    inv_m = 1.0 / b.m;
-    a2_over_I = 1.0 / (b.q * b.m);
-  }
+  return b.is_wall() ? 0.0 : 1.0 / b.m;
+}
+
+static inline double a2_over_I(const Body &b)
+{
+  return b.is_wall() ? 0.0 : 1.0 / (b.q * b.m);
 }
 
 void effective_masses(const Body &b1, const Body &b2, double &m_n, double &m_t)
 {
-  double im1, k1, im2, k2;
-  inverse_inertia(b1, im1, k1);
-  inverse_inertia(b2, im2, k2);
+  const double im1 = inverse_mass(b1), im2 = inverse_mass(b2);
   m_n = 1.0 / (im1 + im2);
-  m_t = 1.0 / (im1 + im2 + k1 + k2);
+  m_t = 1.0 / (im1 + im2 + a2_over_I(b1) + a2_over_I(b2));
 }
 
 double kinetic_energy(const Body &b)
@@ -40,33 +37,18 @@ double kinetic_energy(const Body &b)
   return 0.5 * b.m * norm2(b.v) + 0.5 * b.q * b.m * b.a * b.a * norm2(b.w);
 }
 
-Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n)
+// The tangential part of the map for g_t, the tangential contact-point velocity (gt2 = |g_t|^2,
+// gt = |g_t|): the restitution rt (Coulomb's limit where it binds), the impulse, the spins and
+// the energy that the tangential motion loses, added to c.
+static void tangential(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n, const Vec3 &g_t,
+                       double gt2, double gt, double im1, double im2, double m_n, Collision &c)
 {
-  double im1, k1, im2, k2;
-  inverse_inertia(b1, im1, k1);
-  inverse_inertia(b2, im2, k2);
-  const double m_n = 1.0 / (im1 + im2);
+  const double k1 = a2_over_I(b1), k2 = a2_over_I(b2);
   const double m_t = 1.0 / (im1 + im2 + k1 + k2);
-
-  // contact-point relative velocity; a wall's contact point moves with the wall
-  Vec3 aw = b1.a * b1.w;
-  if (!b2.is_wall()) aw += b2.a * b2.w;
-  const Vec3 g = b1.v - b2.v - cross(aw, n);
-  const double gn = dot(g, n);
-  const Vec3 g_t = g - gn * n;
-  const double gt2 = norm2(g_t);
-  const double gt = std::sqrt(gt2);
-
-  Collision c;
-  c.gn = gn;
-  c.gt = gt;
-  const double g2 = gn * gn + gt2;
-  c.cos_gamma = g2 > 0.0 ? gn / std::sqrt(g2) : -1.0;
-
   // tangential restitution: Coulomb limit rt_C = -1 + mu (m_n/m_t)(1+r)|g_n|/|g_t|
   double rt = law.rt_max;
   if (gt > 0.0 && law.mu_s != INF) {
-    const double slide_scale = (m_n / m_t) * (1.0 + law.r) * std::fabs(gn) / gt;
+    const double slide_scale = (m_n / m_t) * (1.0 + law.r) * std::fabs(c.gn) / gt;
     if (law.kind == LawKind::JZ) {
       // Jenkins-Zhang: stick iff the sticking impulse is below kappa_s times the normal one,
       // otherwise slide with |dP_t| = kappa_d |dP_n| (discontinuous when kappa_s != kappa_d)
@@ -83,17 +65,51 @@ Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Ve
     }
   }
   c.rt = rt;
-
   const Vec3 dP_t = -(m_t * (1.0 + rt)) * g_t;
-  const Vec3 dP = (-m_n * (1.0 + law.r) * gn) * n + dP_t;
-  c.dP = dP;
-  c.v1 = b1.v + im1 * dP;
-  c.v2 = b2.v - im2 * dP;
+  c.dP = c.dP + dP_t;
+  c.v1 = b1.v + im1 * c.dP;
+  c.v2 = b2.v - im2 * c.dP;
   const Vec3 nxdP = cross(n, dP_t);    // = n x dP; exactly 0 without tangential impulse
   // w' = w - a n x dP / I with a/I = (a^2/I)/a
   c.w1 = b1.is_wall() ? Vec3() : b1.w - (k1 / b1.a) * nxdP;
   c.w2 = b2.is_wall() ? Vec3() : b2.w - (k2 / b2.a) * nxdP;
-  c.dE = -0.5 * m_n * (1.0 - law.r * law.r) * gn * gn - 0.5 * m_t * (1.0 - rt * rt) * gt2;
+  c.dE = c.dE - 0.5 * m_t * (1.0 - rt * rt) * gt2;
+}
+
+// A smooth law (rt = -1 whatever the contact, no Coulomb limit: rough with beta = -1, and the TC
+// model's replacement) takes the normal part alone: its tangential impulse, its spin changes and
+// the tangential energy loss are exact zeros, so it gives the same numbers (up to the sign of a
+// zero) without the tangential arithmetic.
+Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n)
+{
+  const double im1 = inverse_mass(b1), im2 = inverse_mass(b2);
+  const double m_n = 1.0 / (im1 + im2);
+
+  // contact-point relative velocity; a wall's contact point moves with the wall
+  Vec3 aw = b1.a * b1.w;
+  if (!b2.is_wall()) aw += b2.a * b2.w;
+  const Vec3 g = b1.v - b2.v - cross(aw, n);
+  const double gn = dot(g, n);
+  const Vec3 g_t = g - gn * n;
+  const double gt2 = norm2(g_t);
+  const double gt = std::sqrt(gt2);
+
+  Collision c;
+  c.gn = gn;
+  c.gt = gt;
+  const double g2 = gn * gn + gt2;
+  c.cos_gamma = g2 > 0.0 ? gn / std::sqrt(g2) : -1.0;
+  c.dP = (-m_n * (1.0 + law.r) * gn) * n;
+  c.dE = -0.5 * m_n * (1.0 - law.r * law.r) * gn * gn;
+  if (law.rt_max == -1.0 && law.mu_s == INF) {
+    c.rt = -1.0;
+    c.v1 = b1.v + im1 * c.dP;
+    c.v2 = b2.v - im2 * c.dP;
+    c.w1 = b1.is_wall() ? Vec3() : b1.w;
+    c.w2 = b2.is_wall() ? Vec3() : b2.w;
+  } else {
+    tangential(law, b1, b2, n, g_t, gt2, gt, im1, im2, m_n, c);
+  }
   c.energy_created = c.dE > 0.0;
   return c;
 }
