@@ -89,10 +89,11 @@ void EventDriven::tally(int i, const Vec3 &r, const Vec3 &dP, double t, double d
   p.t_last = t;
 }
 
-// Pair collision of i and j at t, applied already: r the contact vector (from j's image to i),
-// n its unit vector, b1 and b2 the bodies before, c the law's result, ni and nj their collisions
-// in this window. Tallies of both, the history (for domain windows), and, where the collision
-// is booked (without an accounting: always), the statistics and the collision log.
+// Pair collision of i and j at t, applied already, the pair in its canonical order (i has the
+// smaller key): r the contact vector (from j's image to i), n its unit vector, b1 and b2 the
+// bodies before, c the law's result, ni and nj their collisions in this window. Tallies of
+// both, the history (for domain windows), and, where the collision is booked (where i is
+// counted; without an accounting: always), the statistics and the collision log.
 void EventDriven::record_pair(int i, int j, double t, const Vec3 &r, const Vec3 &n, const Body &b1,
                               const Body &b2, const Collision &c, bool tc_elastic, long ni, long nj)
 {
@@ -107,9 +108,7 @@ void EventDriven::record_pair(int i, int j, double t, const Vec3 &r, const Vec3 
     history->push_back({t, ext[i], ext[j], c.v1, c.w1, c.v2, c.w2});
   if (counted(i)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, ni);
   if (counted(j)) stats.max_collisions_one_particle = std::max(stats.max_collisions_one_particle, nj);
-  // (without an accounting every collision is booked: the keys, another array, are not read)
-  const bool book = !acct.counted || counted(key(i) <= key(j) ? i : j);
-  if (!book) return;
+  if (!counted(i)) return;
   stats.collisions++;
   stats.dE += c.dE;
   if (c.sliding) stats.sliding++;
