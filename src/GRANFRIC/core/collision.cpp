@@ -38,8 +38,8 @@ double kinetic_energy(const Body &b)
 }
 
 // The tangential part of the map for g_t, the tangential contact-point velocity (gt2 = |g_t|^2,
-// gt = |g_t|): the restitution rt (Coulomb's limit where it binds), the impulse, the spins and
-// the energy that the tangential motion loses, added to c.
+// gt = |g_t|): the restitution rt (Coulomb's limit where it binds), the tangential impulse added
+// to c.dP, the spins, and the energy that the tangential motion loses added to c.dE.
 static void tangential(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n, const Vec3 &g_t,
                        double gt2, double gt, double im1, double im2, double m_n, Collision &c)
 {
@@ -67,8 +67,6 @@ static void tangential(const LawParams &law, const Body &b1, const Body &b2, con
   c.rt = rt;
   const Vec3 dP_t = -(m_t * (1.0 + rt)) * g_t;
   c.dP = c.dP + dP_t;
-  c.v1 = b1.v + im1 * c.dP;
-  c.v2 = b2.v - im2 * c.dP;
   const Vec3 nxdP = cross(n, dP_t);    // = n x dP; exactly 0 without tangential impulse
   // w' = w - a n x dP / I with a/I = (a^2/I)/a
   c.w1 = b1.is_wall() ? Vec3() : b1.w - (k1 / b1.a) * nxdP;
@@ -101,15 +99,15 @@ Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Ve
   c.cos_gamma = g2 > 0.0 ? gn / std::sqrt(g2) : -1.0;
   c.dP = (-m_n * (1.0 + law.r) * gn) * n;
   c.dE = -0.5 * m_n * (1.0 - law.r * law.r) * gn * gn;
-  if (law.rt_max == -1.0 && law.mu_s == INF) {
-    c.rt = -1.0;
-    c.v1 = b1.v + im1 * c.dP;
-    c.v2 = b2.v - im2 * c.dP;
+  if (law.smooth()) {
+    c.rt = law.rt_max;
     c.w1 = b1.is_wall() ? Vec3() : b1.w;
     c.w2 = b2.is_wall() ? Vec3() : b2.w;
   } else {
     tangential(law, b1, b2, n, g_t, gt2, gt, im1, im2, m_n, c);
   }
+  c.v1 = b1.v + im1 * c.dP;
+  c.v2 = b2.v - im2 * c.dP;
   c.energy_created = c.dE > 0.0;
   return c;
 }

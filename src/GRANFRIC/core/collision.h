@@ -49,6 +49,8 @@ struct LawParams {
   // can a collision gain energy? (Jenkins-Zhang with kappa_d > kappa_s: a sliding contact then
   // takes a larger tangential impulse than sticking would)
   bool can_create_energy() const { return kind == LawKind::JZ && mu_d > mu_s; }
+  // is it smooth? (rt = -1 whatever the contact, no Coulomb limit: no tangential impulse)
+  bool smooth() const { return rt_max == -1.0 && mu_s == INF; }
 };
 
 struct Body {
