@@ -170,7 +170,7 @@ void EventDriven::collide_pair(int e)
   const double t = se.ct;
   // the pair in a canonical order (i: the smaller key), whichever of the two had the event:
   // the collision law's arithmetic is not symmetric in the last bits
-  const bool swap = key(se.cpartner) < key(e);
+  const bool swap = loop_key(se.cpartner) < loop_key(e);
   const int i = swap ? se.cpartner : e, j = swap ? e : se.cpartner;
   const int sg = swap ? -1 : 1;
   const int off[3] = {sg * se.coff[0], sg * se.coff[1], sg * se.coff[2]};    // (j's image)
@@ -387,6 +387,8 @@ void EventDriven::prefetch_event(int e, bool deep) const
   if (q >= 0) {
     __builtin_prefetch(&H[q]);
     __builtin_prefetch(&C[q]);
+    __builtin_prefetch(&S[q]);
+    queue.prefetch(q);
   }
 }
 
@@ -429,6 +431,12 @@ void EventDriven::prefetch_around(int i, bool deep) const
     }
 }
 
+void EventDriven::copy_keys()
+{
+  const int n = (int) H.size();
+  for (int i = 0; i < n; i++) C[i].key = key(i);
+}
+
 EDStats EventDriven::advance_to(double t_end)
 {
   stats = EDStats();
@@ -443,6 +451,7 @@ EDStats EventDriven::advance_to(double t_end)
   crossing_cap = opt.max_collisions * (long) std::max(1, n);
   refresh();
   if (crossings_since_reorder > 4L * n) reorder();
+  copy_keys();
   const bool far = n > PREFETCH_FROM;
   size_t g = 0;
   while (n > 0) {
@@ -458,6 +467,10 @@ EDStats EventDriven::advance_to(double t_end)
     if (far) {
       prefetch_event(queue.after_next(), false);
       prefetch_event(queue.next(), true);
+      queue.prefetch_ahead([this](int u) {
+        __builtin_prefetch(&S[u]);
+        __builtin_prefetch(&H[u]);
+      });
     }
     if (p.ekind == COLLISION) {
       if (C[p.cpartner].ncoll != p.ccount) {

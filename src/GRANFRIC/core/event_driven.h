@@ -447,13 +447,16 @@ class EventDriven {
     double a = 0.5;           // radius
   };
   static_assert(sizeof(Hot) == 64, "what a pair prediction reads fills one cache line");
+  // (key, ncoll and last_partner first: the 16 bytes that an event asks the memory for ahead
+  // lie in one cache line whatever the record's offset)
   struct Cold {
-    Vec3 w;                   // angular velocity
-    double m = 1.0;           // mass (the shape factor q is its type's: qt)
+    long key = 0;             // key(i), copied for the event loop (copy_keys)
     uint32_t ncoll = 0;       // collisions since start(): invalidates partners' predictions
     int last_partner = -1;    // partner of the last collision
+    Vec3 w;                   // angular velocity
+    double m = 1.0;           // mass (the shape factor q is its type's: qt)
   };
-  static_assert(sizeof(Cold) == 40, "w, m, the collision counter and the last partner: 40 bytes");
+  static_assert(sizeof(Cold) == 48, "the key, the collision counter, the last partner, w and m: 48 bytes");
   big_vector<Hot> H;
   big_vector<Cold> C;
   big_vector<double> TL;                 // time of the last collision (only with tc > 0)
@@ -537,6 +540,11 @@ class EventDriven {
   EDAccounting acct;
   bool counted(int i) const { return !acct.counted || acct.counted[ext[i]]; }
   long key(int i) const { return acct.key ? acct.key[ext[i]] : (long) ext[i]; }
+  // key(i) as copy_keys() left it in i's record at the start of advance_to(): in the event loop
+  // a pair's order costs no lookups through ext and the accounting's keys, which in a large
+  // system are two cache misses per particle
+  long loop_key(int i) const { return C[i].key; }
+  void copy_keys();
   long window_crossings = 0, crossing_cap = 0;    // (this window's, and its cap)
   void count_crossing(int i);            // throws EventCapError past the cap
   std::vector<double> gtimes;            // pending global events
@@ -702,8 +710,11 @@ class EventDriven {
   // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV, bool LATEST>
   void offer(Seek &k, int j, int o0, int o1, int o2);
-  void take(Seek &k, double t, int j, int o0, int o1, int o2)    // (the best so far)
+  // (the best so far; its collision counter, which settle() reads, asked for from the memory
+  // now, while the scan goes on)
+  void take(Seek &k, double t, int j, int o0, int o1, int o2)
   {
+    __builtin_prefetch(&C[j]);
     k.t = t;
     k.h = horizon_limit(t - k.p.t, t);
     k.j = j;

@@ -56,6 +56,7 @@ class EventQueue {
     overflow = -1;
     nbucketed = 0;
     cur = 0;
+    for (Walk &k : walk) k = Walk{};
     for (int i = 0; i < n; i++) insert(i);
     settle();
   }
@@ -83,6 +84,44 @@ class EventQueue {
     return best;
   }
   double top_time() const { return node[top()].key; }
+  // Performance only (no effect on the order): ask the memory for the records that the next
+  // calls will read. In a queue far larger than the cache every record is a miss, and the list
+  // of a bucket, which settle() walks when the bucket comes to the front, a chain of them.
+  //   prefetch_ahead(also) one step further along the list of each of the next AHEAD buckets
+  //                        (called once per event: the step asked for at the last call has
+  //                        arrived, so reading it does not wait), and also(i) for each particle
+  //                        i stepped to, so that the caller can ask for its own records of
+  //                        events to come. A particle linked to a bucket since its walk began
+  //                        was touched then.
+  //   prefetch(i)          what update(i) reads first: particle i's record
+  // (GCC counts a prefetch as touching no memory, so it takes a function that does nothing
+  // else for one without effects and drops its calls; the empty volatile asm is an effect)
+  template <class F>
+  void prefetch_ahead(F &&also)
+  {
+    asm volatile("");
+    for (int64_t b = cur + 1; b <= cur + AHEAD; b++) {
+      Walk &k = walk[b & (AHEAD - 1)];
+      const int s = (int) (b & (nb - 1));
+      int p;
+      if (k.b != b || k.p < 0 || node[k.p].where != s) {
+        k.b = b;
+        p = head[s];
+      } else {
+        p = node[k.p].nxt;
+        if (p < 0) continue;    // (the end of the list: stay there)
+      }
+      k.p = p;
+      if (p < 0) continue;
+      __builtin_prefetch(&node[p]);
+      also(p);
+    }
+  }
+  void prefetch(int i) const
+  {
+    asm volatile("");
+    __builtin_prefetch(&node[i]);
+  }
   double time(int i) const { return node[i].key; }
   // particle i now has event time t
   void update(int i, double t)
@@ -141,6 +180,13 @@ class EventQueue {
   double origin = 0.0, w = 1.0, inv_w = 1.0;
   int64_t cur = 0;                  // absolute index of the current bucket
   int nb = 16;
+  // prefetch_ahead()'s walks: bucket b's (absolute index) at AHEAD's b modulo, at particle p
+  static constexpr int AHEAD = 8;
+  struct Walk {
+    int64_t b = -1;
+    int p = -1;
+  };
+  Walk walk[AHEAD];
 
   bool less(int a, int b) const
   {

@@ -18,7 +18,7 @@ Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n,
   const EDParticleView p = view(i);
   uint64_t tbits;
   std::memcpy(&tbits, &t, sizeof(tbits));
-  CounterStream rng{mix64(mix64(w.seed) ^ (uint64_t) this->key(i)) ^ tbits};
+  CounterStream rng{mix64(mix64(w.seed) ^ (uint64_t) loop_key(i)) ^ tbits};
   auto uniform = [&rng]() { return rng.uniform(); };
   auto gauss = [&]() { return gauss_radius(uniform()) * std::cos(2.0 * M_PI * uniform()); };
   const double sv = std::sqrt(w.T / p.m), sw = std::sqrt(w.T / (p.q * p.m * p.a * p.a));
