@@ -89,10 +89,12 @@ MPI_LIBS = ("libmpi", "libopen-pal", "libopen-rte", "mca_", "libucp", "libuct", 
             "libpmix", "libevent", "libhwloc", "libfabric", "libpsm")
 
 
-# the event loop asking the memory for the next events' records ahead (EventDriven::
-# prefetch_event): a serial run of N = 99856 does it, a rank's share (below PREFETCH_FROM) does
-# not; it buys time, not work, so that counting it would flatter the ranks
-PREFETCH = ("EventDriven::prefetch_event", "EventDriven::prefetch_around")
+# the event loop asking the memory for the records of events to come (EventDriven::
+# prefetch_event, prefetch_upcoming and the queue's walk): a serial run of N = 99856 does it, a
+# rank's share (below EDOptions::prefetch_from) does not; it buys time, not work, so that
+# counting it would flatter the ranks
+PREFETCH = ("EventDriven::prefetch_event", "EventDriven::prefetch_around", "EventDriven::prefetch_upcoming",
+            "EventQueue::prefetch")
 
 
 def work_instructions(path):

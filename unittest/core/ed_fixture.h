@@ -90,14 +90,15 @@ struct CoreRun {
   double time = 0.0;
 
   // neighbours, skin, simd: how the core finds candidates (EDOptions::neighbours, list_skin,
-  // simd)
+  // simd); prefetch_from: EDOptions::prefetch_from
   explicit CoreRun(const Reference &ref, long cap = 1000000, int neighbours = EDOptions::AUTO,
-                   double skin = 0.0, bool simd = true)
+                   double skin = 0.0, bool simd = true, long prefetch_from = EDOptions().prefetch_from)
   {
     EDOptions o;
     o.neighbours = neighbours;
     o.list_skin = skin;
     o.simd = simd;
+    o.prefetch_from = prefetch_from;
     o.dim = ref.dim;
     for (int d = 0; d < 3; d++) {
       o.lo[d] = ref.lo[d];

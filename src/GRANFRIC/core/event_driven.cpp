@@ -437,6 +437,44 @@ void EventDriven::copy_keys()
   for (int i = 0; i < n; i++) C[i].key = key(i);
 }
 
+// The events further ahead, as the queue's walk along its next buckets meets their particles
+// (EventQueue::prefetch_ahead): in stages over the next events, each reading what the one
+// before asked for. A particle p met now: its schedule and hot record; one event later the
+// lines of the cell lists around it, and its collision partner's records; two events later
+// the records of its first candidates, and the cell lists around the partner; three events
+// later the partner's first candidates.
+void EventDriven::prefetch_upcoming()
+{
+  Upcoming &u = upcoming;
+  const int s0 = u.turn & 3, s1 = (u.turn + 3) & 3, s2 = (u.turn + 2) & 3, s3 = (u.turn + 1) & 3;
+  for (int k = 0; k < u.n[s3]; k++)
+    if (u.q[s3][k] >= 0) prefetch_around(u.q[s3][k], true);
+  for (int k = 0; k < u.n[s2]; k++) {
+    prefetch_around(u.p[s2][k], true);
+    if (u.q[s2][k] >= 0) prefetch_around(u.q[s2][k], false);
+  }
+  for (int k = 0; k < u.n[s1]; k++) {
+    const int i = u.p[s1][k];
+    prefetch_around(i, false);
+    const Sched &si = S[i];
+    const int q = si.ekind == COLLISION ? si.cpartner : -1;
+    u.q[s1][k] = q;
+    __builtin_prefetch(&C[i]);
+    if (q < 0) continue;
+    __builtin_prefetch(&S[q]);
+    __builtin_prefetch(&H[q]);
+    __builtin_prefetch(&C[q]);
+    queue.prefetch(q);
+  }
+  u.n[s0] = 0;
+  queue.prefetch_ahead([this, &u, s0](int i) {
+    __builtin_prefetch(&S[i]);
+    __builtin_prefetch(&H[i]);
+    if (u.n[s0] < Upcoming::MOST) u.p[s0][u.n[s0]++] = i;
+  });
+  u.turn++;
+}
+
 EDStats EventDriven::advance_to(double t_end)
 {
   stats = EDStats();
@@ -452,7 +490,8 @@ EDStats EventDriven::advance_to(double t_end)
   refresh();
   if (crossings_since_reorder > 4L * n) reorder();
   copy_keys();
-  const bool far = n > PREFETCH_FROM;
+  upcoming = Upcoming();    // (indices of an earlier numbering, maybe of more particles)
+  const bool far = n > opt.prefetch_from;
   size_t g = 0;
   while (n > 0) {
     const int i = queue.top();
@@ -467,10 +506,7 @@ EDStats EventDriven::advance_to(double t_end)
     if (far) {
       prefetch_event(queue.after_next(), false);
       prefetch_event(queue.next(), true);
-      queue.prefetch_ahead([this](int u) {
-        __builtin_prefetch(&S[u]);
-        __builtin_prefetch(&H[u]);
-      });
+      prefetch_upcoming();
     }
     if (p.ekind == COLLISION) {
       if (C[p.cpartner].ncoll != p.ccount) {

@@ -142,6 +142,10 @@ struct EDOptions {
   // lanes where the processor has them (the same candidates are found: the trajectories are the
   // same bits); false: one at a time
   bool simd = true;
+  // from how many particles on the event loop asks the memory ahead for the records of the
+  // events to come (performance only: the trajectories are the same bits). Below, the records
+  // mostly stay in the cache and asking costs 1 - 3 % (bench/README.md)
+  long prefetch_from = 65536;
 };
 
 struct EDStats {
@@ -634,12 +638,18 @@ class EventDriven {
   std::vector<int> cell_order() const;
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
-  // from how many particles on the event loop asks for the next events' records ahead
-  // (prefetch_event; performance only, no effect on the results): below, the records mostly
-  // stay in the cache and asking costs 1 - 3 % (bench/README.md)
-  static constexpr int PREFETCH_FROM = 65536;
   void prefetch_event(int e, bool deep) const;
   void prefetch_around(int i, bool deep) const;
+  // the particles the queue's walk met at each of the last four events, and their partners
+  // (-1: none; set one event after they were met): prefetch_upcoming
+  struct Upcoming {
+    static constexpr int MOST = 16;
+    int p[4][MOST], q[4][MOST];
+    int n[4] = {0, 0, 0, 0};
+    unsigned turn = 0;
+  };
+  Upcoming upcoming;
+  void prefetch_upcoming();
   void offer_both(int i, int j, int o0, int o1, int o2);
   // lazy state of internal particle i at window time t (inline: read for every candidate
   // partner and by the LAMMPS fix for every atom and step)

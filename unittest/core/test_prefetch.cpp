@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+// Core tests of the event loop's prefetching (EDOptions::prefetch_from): asking the memory ahead
+// for the records of events to come reads the queue's bucket lists, schedules and cell lists
+// but changes nothing, so small systems run with it from their first particle follow the
+// trajectory they follow without it, bit for bit, with cells and lists, in 2d and 3d, across
+// windows and kicks (which rebuild the queue).
+#include "ed_fixture.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+using namespace granfric;
+using namespace granfric_test;
+
+namespace {
+
+bool same_bits(const Vec3 &a, const Vec3 &b)
+{
+  return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
+}
+
+// the reference's system run in windows of dt up to T with a kick of every particle in each
+// window, prefetching from prefetch_from particles
+CoreRun run_prefetching(const Reference &ref, int neighbours, long prefetch_from, double dt, double T)
+{
+  CoreRun run(ref, 1000000, neighbours, 0.0, true, prefetch_from);
+  while (run.time < T - 1e-12 * T) {
+    std::vector<double> kick = {0.5 * dt};
+    run.ed.set_global_events(kick, [&run](int) {
+      for (int e = 0; e < run.ed.size(); e++) {
+        Vec3 &v = run.ed.particle(e).v;
+        v = Vec3(v.y, -v.x, v.z);    // (a rotation: the temperature stays)
+      }
+    });
+    run.window(dt);
+  }
+  return run;
+}
+
+}    // namespace
+
+TEST(Prefetch, SameBitsAsWithout)
+{
+  struct C {
+    int dim, law, n;
+    double phi;
+    int neighbours;
+  };
+  const C cases[] = {{3, 0, 3000, 0.05, EDOptions::CELLS}, {3, 1, 400, 0.25, EDOptions::CELLS},
+                     {3, 0, 300, 0.45, EDOptions::LISTS}, {2, 2, 800, 0.30, EDOptions::CELLS}};
+  for (const C &c : cases) {
+    SystemSpec s = spec_of(c.n, c.dim, c.phi, 700 + 10 * c.law + c.dim);
+    s.lattice = c.phi >= 0.3;
+    s.polydisperse = !s.lattice;
+    Reference ref = make_system(s, law_of(c.law));
+    const double mft = mean_free_time(ref);
+    ref.tc = 1e-3 * mft;
+    SCOPED_TRACE("dim " + std::to_string(c.dim) + " phi " + std::to_string(c.phi));
+    const CoreRun without = run_prefetching(ref, c.neighbours, 1L << 40, 2.0 * mft, 12.0 * mft);
+    const CoreRun with = run_prefetching(ref, c.neighbours, 0, 2.0 * mft, 12.0 * mft);
+    ASSERT_GE(without.total.collisions, 4L * c.n);
+    EXPECT_EQ(with.total.collisions, without.total.collisions);
+    EXPECT_EQ(with.total.crossings, without.total.crossings);
+    int differ = 0;
+    for (int i = 0; i < c.n; i++)
+      differ += !(same_bits(with.ed.position(i, 0.0), without.ed.position(i, 0.0)) &&
+                  same_bits(with.ed.velocity(i, 0.0), without.ed.velocity(i, 0.0)) &&
+                  same_bits(with.ed.particle(i).w, without.ed.particle(i).w));
+    EXPECT_EQ(differ, 0) << "particles whose state differs in some bit";
+  }
+}
