@@ -8,6 +8,7 @@
 #include "reference_ed.h"
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <stdexcept>
@@ -154,6 +155,17 @@ struct CoreRun {
     while (time < T - 1e-12 * T) window(std::min(dt, T - time));
   }
 };
+
+// how many particles of two runs of one system differ in some bit of x, v or w at window time 0
+inline int states_differing(const CoreRun &a, const CoreRun &b)
+{
+  auto same = [](const Vec3 &u, const Vec3 &v) { return std::memcmp(&u, &v, sizeof(Vec3)) == 0; };
+  int differ = 0;
+  for (int i = 0; i < a.ed.size(); i++)
+    differ += !(same(a.ed.position(i, 0.0), b.ed.position(i, 0.0)) &&
+                same(a.ed.velocity(i, 0.0), b.ed.velocity(i, 0.0)) && same(a.ed.particle(i).w, b.ed.particle(i).w));
+  return differ;
+}
 
 // the reference's kicks in the window [t0, t0 + dt) as the core's global events of that window,
 // each adding dv(e, k) to the velocity of particle e (k: the kick's index in the reference)

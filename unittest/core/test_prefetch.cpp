@@ -9,17 +9,11 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 
 using namespace granfric;
 using namespace granfric_test;
 
 namespace {
-
-bool same_bits(const Vec3 &a, const Vec3 &b)
-{
-  return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
-}
 
 // the reference's system run in windows of dt up to T with a kick of every particle in each
 // window, prefetching from prefetch_from particles
@@ -63,11 +57,6 @@ TEST(Prefetch, SameBitsAsWithout)
     ASSERT_GE(without.total.collisions, 4L * c.n);
     EXPECT_EQ(with.total.collisions, without.total.collisions);
     EXPECT_EQ(with.total.crossings, without.total.crossings);
-    int differ = 0;
-    for (int i = 0; i < c.n; i++)
-      differ += !(same_bits(with.ed.position(i, 0.0), without.ed.position(i, 0.0)) &&
-                  same_bits(with.ed.velocity(i, 0.0), without.ed.velocity(i, 0.0)) &&
-                  same_bits(with.ed.particle(i).w, without.ed.particle(i).w));
-    EXPECT_EQ(differ, 0) << "particles whose state differs in some bit";
+    EXPECT_EQ(states_differing(with, without), 0) << "particles whose state differs in some bit";
   }
 }
