@@ -91,7 +91,7 @@ MPI_LIBS = ("libmpi", "libopen-pal", "libopen-rte", "mca_", "libucp", "libuct", 
 
 # the event loop asking the memory for the records of events to come (EventDriven::
 # prefetch_event, prefetch_upcoming and the queue's walk): a serial run of N = 99856 does it, a
-# rank's share (below EDOptions::prefetch_from) does not; it buys time, not work, so that
+# rank's share (below EDOptions::prefetch_bytes) does not; it buys time, not work, so that
 # counting it would flatter the ranks
 PREFETCH = ("EventDriven::prefetch_event", "EventDriven::prefetch_around", "EventDriven::prefetch_upcoming",
             "EventQueue::prefetch")

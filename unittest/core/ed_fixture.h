@@ -91,15 +91,15 @@ struct CoreRun {
   double time = 0.0;
 
   // neighbours, skin, simd: how the core finds candidates (EDOptions::neighbours, list_skin,
-  // simd); prefetch_from: EDOptions::prefetch_from
+  // simd); prefetch_bytes: EDOptions::prefetch_bytes
   explicit CoreRun(const Reference &ref, long cap = 1000000, int neighbours = EDOptions::AUTO,
-                   double skin = 0.0, bool simd = true, long prefetch_from = EDOptions().prefetch_from)
+                   double skin = 0.0, bool simd = true, long prefetch_bytes = EDOptions().prefetch_bytes)
   {
     EDOptions o;
     o.neighbours = neighbours;
     o.list_skin = skin;
     o.simd = simd;
-    o.prefetch_from = prefetch_from;
+    o.prefetch_bytes = prefetch_bytes;
     o.dim = ref.dim;
     for (int d = 0; d < 3; d++) {
       o.lo[d] = ref.lo[d];

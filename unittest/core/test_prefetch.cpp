@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
-// Core tests of the event loop's prefetching (EDOptions::prefetch_from): asking the memory ahead
+// Core tests of the event loop's prefetching (EDOptions::prefetch_bytes): asking the memory ahead
 // for the records of events to come reads the queue's bucket lists, schedules and cell lists
 // but changes nothing, so small systems run with it from their first particle follow the
 // trajectory they follow without it, bit for bit, with cells and lists, in 2d and 3d, across
@@ -16,10 +16,10 @@ using namespace granfric_test;
 namespace {
 
 // the reference's system run in windows of dt up to T with a kick of every particle in each
-// window, prefetching from prefetch_from particles
-CoreRun run_prefetching(const Reference &ref, int neighbours, long prefetch_from, double dt, double T)
+// window, prefetching from prefetch_bytes bytes of records
+CoreRun run_prefetching(const Reference &ref, int neighbours, long prefetch_bytes, double dt, double T)
 {
-  CoreRun run(ref, 1000000, neighbours, 0.0, true, prefetch_from);
+  CoreRun run(ref, 1000000, neighbours, 0.0, true, prefetch_bytes);
   while (run.time < T - 1e-12 * T) {
     std::vector<double> kick = {0.5 * dt};
     run.ed.set_global_events(kick, [&run](int) {

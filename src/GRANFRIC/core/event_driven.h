@@ -142,10 +142,11 @@ struct EDOptions {
   // lanes where the processor has them (the same candidates are found: the trajectories are the
   // same bits); false: one at a time
   bool simd = true;
-  // from how many particles on the event loop asks the memory ahead for the records of the
-  // events to come (performance only: the trajectories are the same bits). Below, the records
-  // mostly stay in the cache and asking costs 1 - 3 % (bench/README.md)
-  long prefetch_from = 65536;
+  // from how many bytes of the core's records (memory_bytes()) on the event loop asks the
+  // memory ahead for the records of the events to come (performance only: the trajectories are
+  // the same bits). Below, the records mostly stay in the cache and asking costs up to 13 %
+  // (bench/README.md)
+  long prefetch_bytes = 10L << 20;
 };
 
 struct EDStats {
