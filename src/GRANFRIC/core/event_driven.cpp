@@ -112,6 +112,7 @@ void EventDriven::resize(int n)
   acct = EDAccounting();
   H.assign(n, Hot());
   C.assign(n, Cold());
+  NC.assign(n, 0);
   TL.assign(opt.tc > 0.0 ? n : 0, -INF);
   S.assign(n, Sched());
   WT.clear();
@@ -198,8 +199,8 @@ void EventDriven::collide_pair(int e)
     note_speed(i, hp.v);
     note_speed(j, hq.v);
   }
-  p.ncoll++;
-  q.ncoll++;
+  NC[i]++;
+  NC[j]++;
   p.last_partner = j;
   q.last_partner = i;
   for (int d = 0; d < 3; d++) {
@@ -245,7 +246,7 @@ void EventDriven::start_common()
   for (auto &s : S) s.ncollisions = 0;
   WT.assign(opt.walls.empty() ? 0 : n, NEVER);
   for (int i = 0; i < n; i++) {
-    C[i].ncoll = 0;
+    NC[i] = 0;
     if (opt.dim == 2) {
       H[i].v.z = 0.0;
       C[i].w.x = C[i].w.y = 0.0;
@@ -299,7 +300,7 @@ void EventDriven::remove(int e)
   s.gone = 1;
   no_events(i);
   s.ekind = NONE;
-  C[i].ncoll++;    // predictions that involved it are stale
+  NC[i]++;    // predictions that involved it are stale
   C[i].last_partner = -1;
 }
 
@@ -319,7 +320,7 @@ void EventDriven::changed(int e, bool own_time)
   s.gone = 0;
   if (!own_time) p.t = now;
   if (!(p.t <= now)) throw std::invalid_argument("changed: a particle's stored time lies after now");
-  c.ncoll++;    // every prediction that involved it is stale
+  NC[i]++;    // every prediction that involved it is stale
   c.last_partner = -1;
   if (opt.dim == 2) {
     p.v.z = 0.0;
@@ -381,12 +382,12 @@ void EventDriven::prefetch_event(int e, bool deep) const
 {
   if (e < 0) return;
   __builtin_prefetch(&S[e]);
-  __builtin_prefetch(&C[e]);
+  prefetch_cold(e);
   prefetch_around(e, deep);
   const int q = S[e].cpartner;
   if (q >= 0) {
     __builtin_prefetch(&H[q]);
-    __builtin_prefetch(&C[q]);
+    prefetch_cold(q);
     __builtin_prefetch(&S[q]);
     queue.prefetch(q);
   }
@@ -459,11 +460,11 @@ void EventDriven::prefetch_upcoming()
     const Sched &si = S[i];
     const int q = si.ekind == COLLISION ? si.cpartner : -1;
     u.q[s1][k] = q;
-    __builtin_prefetch(&C[i]);
+    prefetch_cold(i);
     if (q < 0) continue;
     __builtin_prefetch(&S[q]);
     __builtin_prefetch(&H[q]);
-    __builtin_prefetch(&C[q]);
+    prefetch_cold(q);
     queue.prefetch(q);
   }
   u.n[s0] = 0;
@@ -509,7 +510,7 @@ EDStats EventDriven::advance_to(double t_end)
       prefetch_upcoming();
     }
     if (p.ekind == COLLISION) {
-      if (C[p.cpartner].ncoll != p.ccount) {
+      if (NC[p.cpartner] != p.ccount) {
         predict(i);    // the partner changed course: stale prediction
         reschedule(i);
       } else {
@@ -554,7 +555,7 @@ void EventDriven::global_event(int k)
   for (int i = 0; i < n; i++) {
     Hot &h = H[i];
     Cold &p = C[i];
-    p.ncoll++;    // every trajectory changed: all stored predictions are stale
+    NC[i]++;    // every trajectory changed: all stored predictions are stale
     p.last_partner = -1;
     if (opt.dim == 2) {
       h.v.z = 0.0;

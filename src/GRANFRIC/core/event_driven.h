@@ -390,7 +390,7 @@ class EventDriven {
   // bytes held (particles, index maps, cells, queue, optional records)
   size_t memory_bytes() const
   {
-    return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) +
+    return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) + NC.capacity() * sizeof(uint32_t) +
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
         XW.capacity() * sizeof(Vec3) + NB.capacity() * sizeof(Entry) + NN.capacity() +
@@ -452,18 +452,20 @@ class EventDriven {
     double a = 0.5;           // radius
   };
   static_assert(sizeof(Hot) == 64, "what a pair prediction reads fills one cache line");
-  // (key, ncoll and last_partner first: the 16 bytes that an event asks the memory for ahead
-  // lie in one cache line whatever the record's offset)
   struct Cold {
     long key = 0;             // key(i), copied for the event loop (copy_keys)
-    uint32_t ncoll = 0;       // collisions since start(): invalidates partners' predictions
-    int last_partner = -1;    // partner of the last collision
     Vec3 w;                   // angular velocity
     double m = 1.0;           // mass (the shape factor q is its type's: qt)
+    int last_partner = -1;    // partner of the last collision
   };
-  static_assert(sizeof(Cold) == 48, "the key, the collision counter, the last partner, w and m: 48 bytes");
+  static_assert(sizeof(Cold) == 48, "the key, w, m and the last partner: 48 bytes");
   big_vector<Hot> H;
   big_vector<Cold> C;
+  // collisions since start() (and other changes of the trajectory): a prediction stores its
+  // partner's count and is stale when it changed. Apart, 4 bytes per particle, since a scan
+  // reads the count of its best candidate and the event loop the one of each event's partner:
+  // in a large system a dense array misses the cache less often than the records would
+  big_vector<uint32_t> NC;
   big_vector<double> TL;                 // time of the last collision (only with tc > 0)
   double tl_none = -INF;                 // what t_last refers to without the TC model
   static constexpr double TL_NONE = -INF;    // (read-only views: no store to tl_none)
@@ -499,7 +501,7 @@ class EventDriven {
     int8_t xdim : 4, xdir : 4;    // crossing dimension and direction (+1 / -1)
     int8_t wall = -1;         // which wall
     int cpartner = -1;        // collision candidate: partner,
-    uint32_t ccount = 0;      //   partner's ncoll at prediction (stale when it changed),
+    uint32_t ccount = 0;      //   partner's count NC at prediction (stale when it changed),
     uint32_t ncollisions = 0; // collisions in this window (event cap)
     int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * P
     int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
@@ -641,6 +643,15 @@ class EventDriven {
   void predict_all();                    // predict() for every particle, each pair once
   void prefetch_event(int e, bool deep) const;
   void prefetch_around(int i, bool deep) const;
+  // what a collision reads of i besides its hot record: its collision count, its Cold record
+  // (which may straddle two cache lines) and its time of the last collision (with the TC model)
+  void prefetch_cold(int i) const
+  {
+    __builtin_prefetch(&NC[i]);
+    __builtin_prefetch(&C[i]);
+    __builtin_prefetch(reinterpret_cast<const char *>(&C[i]) + sizeof(Cold) - 1);
+    if (!TL.empty()) __builtin_prefetch(&TL[i]);
+  }
   // the particles the queue's walk met at each of the last four events, and their partners
   // (-1: none; set one event after they were met): prefetch_upcoming
   struct Upcoming {
@@ -725,7 +736,7 @@ class EventDriven {
   // now, while the scan goes on)
   void take(Seek &k, double t, int j, int o0, int o1, int o2)
   {
-    __builtin_prefetch(&C[j]);
+    __builtin_prefetch(&NC[j]);
     k.t = t;
     k.h = horizon_limit(t - k.p.t, t);
     k.j = j;
