@@ -110,7 +110,10 @@ bool HardsphereGatherWindow::can_reuse(double T0)
   bool reuse = valid && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
       (int) offset.size() == noff * ntotal;
   const hardsphere::FarWrap wrap(domain);
-  for (int s = 0; reuse && s < ntotal; s++) reuse = reusable(s, T0, wrap);
+  for (int s = 0; reuse && s < ntotal; s++) {
+    if (s + AHEAD < ntotal) ed.prefetch_particle(s + AHEAD);
+    reuse = reusable(s, T0, wrap);
+  }
   return reuse;
 }
 
@@ -260,6 +263,7 @@ void HardsphereGatherWindow::take_back(double T1)
   const hardsphere::FarWrap wrap(domain);
   bool offsets_full = false;    // an offset left its range: the next window starts afresh
   for (int s = 0; s < ntotal; s++) {
+    if (s + AHEAD < ntotal) ed.prefetch_particle(s + AHEAD);
     const int i = order[s] - myfirst;    // its owned atom, or none
     int8_t *stored = &offset[(size_t) s * noff];
     int dimg[3] = {0, 0, 0};

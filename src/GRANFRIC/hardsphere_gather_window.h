@@ -75,6 +75,9 @@ class HardsphereGatherWindow : protected Pointers {
   // one starts afresh from LAMMPS's positions with the offsets back at 0
   std::vector<int8_t> offset;
   static constexpr int OFFSET_MAX = 100;
+  // how many core particles ahead the walks over all of them ask the memory for their records
+  // (EventDriven::prefetch_particle; performance only)
+  static constexpr int AHEAD = 16;
   int noff = 3;
   double wper[3] = {0, 0, 0};     // period per offset (0: not periodic)
 

@@ -433,6 +433,16 @@ class EventDriven {
     return x[0] == xs.x && x[1] == xs.y && x[2] == xs.z && v[0] == vs.x && v[1] == vs.y &&
         v[2] == vs.z && w[0] == ws.x && w[1] == ws.y && w[2] == ws.z;
   }
+  // Performance only: ask the memory for what state(), holds() and is_body() read of particle
+  // e, for a host that walks every particle and calls it some particles ahead
+  void prefetch_particle(int e) const
+  {
+    asm volatile("");    // (see EventQueue::prefetch_ahead)
+    const int i = loc[e];
+    __builtin_prefetch(&H[i]);
+    __builtin_prefetch(&S[i]);
+    prefetch_cold(i);
+  }
   // position, velocity and angular velocity of particle e at window time t into x, v, w (3
   // values each): what position(), velocity() and particle().w give, with one index lookup
   void state(int e, double t, double *x, double *v, double *w) const
