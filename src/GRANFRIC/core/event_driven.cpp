@@ -438,14 +438,16 @@ void EventDriven::copy_keys()
   for (int i = 0; i < n; i++) C[i].key = key(i);
 }
 
-// The events further ahead, as the queue's walk along its next buckets meets their particles
-// (EventQueue::prefetch_ahead): in stages over the next events, each reading what the one
-// before asked for. A particle p met now: its schedule and hot record; one event later the
+// The next two events (prefetch_event), and those further ahead, as the queue's walk along its
+// next buckets meets their particles (EventQueue::prefetch_ahead): in stages over the next
+// events, each reading what the one before asked for. A particle p met now: its schedule and hot record; one event later the
 // lines of the cell lists around it, and its collision partner's records; two events later
 // the records of its first candidates, and the cell lists around the partner; three events
 // later the partner's first candidates.
 void EventDriven::prefetch_upcoming()
 {
+  prefetch_event(queue.after_next(), false);
+  prefetch_event(queue.next(), true);
   Upcoming &u = upcoming;
   const int s0 = u.turn & 3, s1 = (u.turn + 3) & 3, s2 = (u.turn + 2) & 3, s3 = (u.turn + 1) & 3;
   for (int k = 0; k < u.n[s3]; k++)
@@ -504,11 +506,7 @@ EDStats EventDriven::advance_to(double t_end)
     }
     if (!(et < t_end)) break;
     now = et;
-    if (far) {
-      prefetch_event(queue.after_next(), false);
-      prefetch_event(queue.next(), true);
-      prefetch_upcoming();
-    }
+    if (far) prefetch_upcoming();
     if (p.ekind == COLLISION) {
       if (NC[p.cpartner] != p.ccount) {
         predict(i);    // the partner changed course: stale prediction
