@@ -90,9 +90,9 @@ MPI_LIBS = ("libmpi", "libopen-pal", "libopen-rte", "mca_", "libucp", "libuct", 
 
 
 # the event loop asking the memory for the records of events to come (EventDriven::
-# prefetch_event, prefetch_upcoming and the queue's walk): a serial run of N = 99856 does it, a
-# rank's share (below EDOptions::prefetch_bytes) does not; it buys time, not work, so that
-# counting it would flatter the ranks
+# prefetch_upcoming and what it calls): from 10 MiB of records (EDOptions::prefetch_bytes), so a
+# serial run of N = 99856 does it and a rank's half only just; it buys time, not work, and
+# counting it would weigh the two runs unequally
 PREFETCH = ("EventDriven::prefetch_event", "EventDriven::prefetch_around", "EventDriven::prefetch_upcoming",
             "EventQueue::prefetch")
 
