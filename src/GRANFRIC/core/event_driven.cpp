@@ -440,10 +440,10 @@ void EventDriven::copy_keys()
 
 // The next two events (prefetch_event), and those further ahead, as the queue's walk along its
 // next buckets meets their particles (EventQueue::prefetch_ahead): in stages over the next
-// events, each reading what the one before asked for. A particle p met now: its schedule and hot record; one event later the
-// lines of the cell lists around it, and its collision partner's records; two events later
-// the records of its first candidates, and the cell lists around the partner; three events
-// later the partner's first candidates.
+// events, each reading what the one before asked for. A particle met now: its schedule and hot
+// record; one event later the lines of the cell lists around it, and its collision partner's
+// records; two events later the records of its first candidates, and the cell lists around the
+// partner; three events later the partner's first candidates.
 void EventDriven::prefetch_upcoming()
 {
   prefetch_event(queue.after_next(), false);
