@@ -181,7 +181,7 @@ class EventQueue {
   int64_t cur = 0;                  // absolute index of the current bucket
   int nb = 16;
   // prefetch_ahead()'s walks: bucket b's (absolute index) at AHEAD's b modulo, at particle p
-  static constexpr int AHEAD = 8;
+  static constexpr int AHEAD = 4;
   struct Walk {
     int64_t b = -1;
     int p = -1;
