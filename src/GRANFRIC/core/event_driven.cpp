@@ -385,12 +385,7 @@ void EventDriven::prefetch_event(int e, bool deep) const
   prefetch_cold(e);
   prefetch_around(e, deep);
   const int q = S[e].cpartner;
-  if (q >= 0) {
-    __builtin_prefetch(&H[q]);
-    prefetch_cold(q);
-    __builtin_prefetch(&S[q]);
-    queue.prefetch(q);
-  }
+  if (q >= 0) prefetch_partner(q);
 }
 
 void EventDriven::prefetch_around(int i, bool deep) const
@@ -463,11 +458,7 @@ void EventDriven::prefetch_upcoming()
     const int q = si.ekind == COLLISION ? si.cpartner : -1;
     u.q[s1][k] = q;
     prefetch_cold(i);
-    if (q < 0) continue;
-    __builtin_prefetch(&S[q]);
-    __builtin_prefetch(&H[q]);
-    prefetch_cold(q);
-    queue.prefetch(q);
+    if (q >= 0) prefetch_partner(q);
   }
   u.n[s0] = 0;
   queue.prefetch_ahead([this, &u, s0](int i) {

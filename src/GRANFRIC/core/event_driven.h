@@ -662,6 +662,14 @@ class EventDriven {
     __builtin_prefetch(reinterpret_cast<const char *>(&C[i]) + sizeof(Cold) - 1);
     if (!TL.empty()) __builtin_prefetch(&TL[i]);
   }
+  // what an event reads of its collision partner q: its schedule, its records, its queue record
+  void prefetch_partner(int q) const
+  {
+    __builtin_prefetch(&S[q]);
+    __builtin_prefetch(&H[q]);
+    prefetch_cold(q);
+    queue.prefetch(q);
+  }
   // the particles the queue's walk met at each of the last four events, and their partners
   // (-1: none; set one event after they were met): prefetch_upcoming
   struct Upcoming {
