@@ -46,10 +46,12 @@ inline double build(EventDriven &ed, int dim, long n, double phi, double cell, u
   // how candidates are found, for measurements of either way (EDOptions::neighbours, list_skin):
   // GRANFRIC_NEIGHBOURS = 0 (automatic, the default), 1 (cells), 2 (neighbour lists);
   // GRANFRIC_SKIN = the lists' skin in diameters (0: automatic); GRANFRIC_SIMD = 0: candidates
-  // one at a time, not in AVX2 lanes
+  // one at a time, not in AVX2 lanes; GRANFRIC_PREFETCH_BYTES = the core's records from which
+  // the event loop prefetches (EDOptions::prefetch_bytes)
   if (const char *nm = std::getenv("GRANFRIC_NEIGHBOURS")) o.neighbours = std::atoi(nm);
   if (const char *sk = std::getenv("GRANFRIC_SKIN")) o.list_skin = std::atof(sk);
   if (const char *sd = std::getenv("GRANFRIC_SIMD")) o.simd = std::atoi(sd) != 0;
+  if (const char *pb = std::getenv("GRANFRIC_PREFETCH_BYTES")) o.prefetch_bytes = std::atol(pb);
   for (int d = 0; d < 3; d++) {
     o.lo[d] = 0.0;
     o.hi[d] = (d < dim) ? side : 1.0;

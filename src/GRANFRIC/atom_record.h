@@ -54,13 +54,23 @@ struct AtomRecord {
     p.type = (int) type;
   }
   // does particle p hold this atom's state and body, bit for bit?
-  bool held_by(granfric::EDParticleView p) const
-  {
-    return p.x.x == x[0] && p.x.y == x[1] && p.x.z == x[2] && p.v.x == v[0] && p.v.y == v[1] &&
-        p.v.z == v[2] && p.t == t && p.w.x == w[0] && p.w.y == w[1] && p.w.z == w[2] &&
-        p.a == radius && p.m == mass && p.type == (int) type && p.t_last == tlast;
-  }
+  bool held_by(granfric::EDParticleView p) const;
 };
+
+// does particle p hold the state x, v (at t; last collision at tlast) and the body w, radius,
+// mass, type, bit for bit? (x, v, w: three doubles each)
+inline bool holds_atom(granfric::EDParticleView p, const double *x, const double *v, double t,
+                       double tlast, const double *w, double radius, double mass, double type)
+{
+  return p.x.x == x[0] && p.x.y == x[1] && p.x.z == x[2] && p.v.x == v[0] && p.v.y == v[1] &&
+      p.v.z == v[2] && p.t == t && p.w.x == w[0] && p.w.y == w[1] && p.w.z == w[2] &&
+      p.a == radius && p.m == mass && p.type == (int) type && p.t_last == tlast;
+}
+
+inline bool AtomRecord::held_by(granfric::EDParticleView p) const
+{
+  return holds_atom(p, x, v, t, tlast, w, radius, mass, type);
+}
 
 // where the fields lie in a record of a message, in doubles
 struct AtomRecordAt {

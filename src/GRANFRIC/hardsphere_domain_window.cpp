@@ -507,15 +507,49 @@ AtomRecord HardsphereDomainWindow::record_of(int a) const
   return AtomRecord::read(&drecv[gsrc[a - nlocal]]);
 }
 
-// the frame shift of atom a (record r) in this rank's core: its stored position lies that many
-// periods below where this rank's region sees it (the copy's image shift less its periods)
-void HardsphereDomainWindow::frame_of(int a, const AtomRecord &r, int *f) const
+// the frame shift of atom a (off: its record's periods) in this rank's core: its stored
+// position lies that many periods below where this rank's region sees it (the copy's image
+// shift less its periods)
+void HardsphereDomainWindow::frame_of(int a, const double *off, int *f) const
 {
   for (int d = 0; d < 3; d++) {
     f[d] = 0;
     if (d >= dim || grid_whole[d] || !domain->periodicity[d]) continue;
-    f[d] = (a < nlocal ? 0 : gshift[3 * (a - nlocal) + d]) - (int) r.off[d];
+    f[d] = (a < nlocal ? 0 : gshift[3 * (a - nlocal) + d]) - (int) off[d];
   }
+}
+
+// does slot sl hold atom a as its record says (state, body, frame f, which this sets, and last
+// partner), bit for bit? An owned atom is read where the fix keeps it, without a record.
+bool HardsphereDomainWindow::slot_holds(int a, int sl, int *f) const
+{
+  const auto p = std::as_const(ed).particle(sl);
+  if (a >= nlocal) {
+    const AtomRecord in = record_of(a);
+    frame_of(a, in.off, f);
+    return ed.present(sl) && in.held_by(p) && links_held(sl, f, in.partner, in.poff);
+  }
+  const double *xs = fix.xstate[a];
+  frame_of(a, xs + FixHardsphereED::XS_OFF, f);
+  return ed.present(sl) &&
+      holds_atom(p, xs + FixHardsphereED::XS_X, xs + FixHardsphereED::XS_V, xs[FixHardsphereED::XS_T],
+                 xs[FixHardsphereED::XS_TLAST], atom->omega[a], atom->radius[a], atom->rmass[a],
+                 (double) atom->type[a]) &&
+      links_held(sl, f, xs[FixHardsphereED::XS_PARTNER], xs + FixHardsphereED::XS_POFF);
+}
+
+// does slot sl have the frame f, and the last partner of the given ID (0: none) with image
+// shift poff, where that partner has a slot here (partner_slot)? (stag and slot_of_tag map
+// slots and IDs both ways, so the slot's partner is the atom's when it carries that ID)
+bool HardsphereDomainWindow::links_held(int sl, const int *f, double partner, const double *poff) const
+{
+  const int ps = ed.last_partner(sl);
+  if (ps >= 0 ? stag[ps] != (long) partner : partner > 0.0 && slot_of_tag.get((long) partner) >= 0)
+    return false;
+  const int *fs = ed.frame(sl), *po = ed.last_offset(sl);
+  for (int d = 0; d < 3; d++)
+    if ((fs ? fs[d] : 0) != f[d] || (ps >= 0 && po[d] != (int) poff[d])) return false;
+  return true;
 }
 
 // the slot of the last partner of atom r here (-1: none, or not here)
@@ -576,8 +610,12 @@ bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
   int *seen = sseen.data(), *ins = inslot.data();
   bool twice = false;    // (an atom twice cannot happen: owned once, copied once)
   long matched = 0;      // atoms that have a slot
+  const int nguess = std::min(nlocal, (int) lslot.size());
   for (int a = 0; a < nlocal + nghost; a++) {
-    const int sl = slot_of_tag.get(tag_of(a));
+    // (an owned atom mostly has the index, and so the slot, it had in the last window)
+    const long t = tag_of(a);
+    const int guess = a < nguess ? lslot[a] : -1;
+    const int sl = guess >= 0 && guess < (int) stag.size() && stag[guess] == t ? guess : slot_of_tag.get(t);
     ins[a] = sl;
     if (sl < 0) continue;
     matched++;
@@ -636,15 +674,10 @@ void HardsphereDomainWindow::keep_core()
   lslot.resize(nlocal);
   for (int a = 0; a < n; a++) {
     const int sl = inslot[a];
-    const AtomRecord in = record_of(a);
     int f[3];
-    frame_of(a, in, f);
-    const int ps = partner_slot(in);
-    const int *fs = ed.frame(sl), *po = ed.last_offset(sl);
-    bool same = ed.present(sl) && in.held_by(std::as_const(ed).particle(sl)) && ed.last_partner(sl) == ps;
-    for (int d = 0; d < 3 && same; d++)
-      same = (fs ? fs[d] : 0) == f[d] && (ps < 0 || po[d] == (int) in.poff[d]);
-    if (!same) {
+    if (!slot_holds(a, sl, f)) {
+      const AtomRecord in = record_of(a);
+      const int ps = partner_slot(in);
       auto p = ed.particle(sl);
       in.to_particle(p);
       p.t_last = in.tlast;
@@ -655,7 +688,7 @@ void HardsphereDomainWindow::keep_core()
       repredicted++;
       if (a < nlocal && sowned_prev[sl]) owned_changed++;
     }
-    smask[sl] = (int) in.mask;
+    smask[sl] = a < nlocal ? atom->mask[a] : (int) drecv[gsrc[a - nlocal] + AtomRecordAt::MASK];
     if (a < nlocal) {
       sowned[sl] = 1;
       lslot[a] = sl;
@@ -706,7 +739,7 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o)
     in.to_particle(p);
     p.t_last = in.tlast;
     int f[3];
-    frame_of(a, in, f);
+    frame_of(a, in.off, f);
     ed.set_frame(e, f);
     stag[e] = (long) in.tag;
     smask[e] = (int) in.mask;

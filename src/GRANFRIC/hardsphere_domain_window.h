@@ -93,8 +93,10 @@ class HardsphereDomainWindow : protected Pointers {
   double gap_to(const double *x, int r) const;
   long tag_of(int a) const;
   AtomRecord record_of(int a) const;
-  void frame_of(int a, const AtomRecord &r, int *f) const;
+  void frame_of(int a, const double *off, int *f) const;
   int partner_slot(const AtomRecord &r) const;
+  bool slot_holds(int a, int sl, int *f) const;
+  bool links_held(int sl, const int *f, double partner, const double *poff) const;
   void event_of(int e, int m, double *out) const;
   long exchange(const std::vector<double> &send, std::vector<double> &recv);
   bool guard_atom(int i, double s2, double dt);
