@@ -380,6 +380,7 @@ void EventDriven::refresh()
 // asked for one event earlier) the candidates' records.
 void EventDriven::prefetch_event(int e, bool deep) const
 {
+  asm volatile("");    // (see EventQueue::prefetch_ahead)
   if (e < 0) return;
   __builtin_prefetch(&S[e]);
   prefetch_cold(e);
@@ -390,6 +391,7 @@ void EventDriven::prefetch_event(int e, bool deep) const
 
 void EventDriven::prefetch_around(int i, bool deep) const
 {
+  asm volatile("");    // (see EventQueue::prefetch_ahead)
   __builtin_prefetch(&H[i]);
   __builtin_prefetch(&img[i]);
   if (lists) {

@@ -657,6 +657,7 @@ class EventDriven {
   // (which may straddle two cache lines) and its time of the last collision (with the TC model)
   void prefetch_cold(int i) const
   {
+    asm volatile("");    // (see EventQueue::prefetch_ahead)
     __builtin_prefetch(&NC[i]);
     __builtin_prefetch(&C[i]);
     __builtin_prefetch(reinterpret_cast<const char *>(&C[i]) + sizeof(Cold) - 1);
@@ -665,6 +666,7 @@ class EventDriven {
   // what an event reads of its collision partner q: its schedule, its records, its queue record
   void prefetch_partner(int q) const
   {
+    asm volatile("");    // (see EventQueue::prefetch_ahead)
     __builtin_prefetch(&S[q]);
     __builtin_prefetch(&H[q]);
     prefetch_cold(q);
