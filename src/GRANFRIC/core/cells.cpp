@@ -332,6 +332,7 @@ void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
   }
   p.xt = xt;
   if (xt < NEVER) p.xdim = (int8_t) xdim, p.xdir = (int8_t) xdir;
+  if (far) queue.prefetch_time(xt);
 }
 
 // one more crossing (or list rebuild) of particle i in this window, within the cap

@@ -487,7 +487,7 @@ EDStats EventDriven::advance_to(double t_end)
   if (crossings_since_reorder > 4L * n) reorder();
   copy_keys();
   upcoming = Upcoming();    // (indices of an earlier numbering, maybe of more particles)
-  const bool far = (long) memory_bytes() > opt.prefetch_bytes;
+  far = (long) memory_bytes() > opt.prefetch_bytes;
   size_t g = 0;
   while (n > 0) {
     const int i = queue.top();

@@ -681,6 +681,7 @@ class EventDriven {
     unsigned turn = 0;
   };
   Upcoming upcoming;
+  bool far = false;    // this window prefetches (its records exceed EDOptions::prefetch_bytes)
   void prefetch_upcoming();
   void offer_both(int i, int j, int o0, int o1, int o2);
   // lazy state of internal particle i at window time t (inline: read for every candidate
@@ -753,10 +754,11 @@ class EventDriven {
   template <int DIM, bool GRAV, bool LATEST>
   void offer(Seek &k, int j, int o0, int o1, int o2);
   // (the best so far; its collision counter, which settle() reads, asked for from the memory
-  // now, while the scan goes on)
+  // now, while the scan goes on, and so is the queue's bucket for its time)
   void take(Seek &k, double t, int j, int o0, int o1, int o2)
   {
     __builtin_prefetch(&NC[j]);
+    if (far) queue.prefetch_time(t);
     k.t = t;
     k.h = horizon_limit(t - k.p.t, t);
     k.j = j;

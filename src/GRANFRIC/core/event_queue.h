@@ -94,6 +94,8 @@ class EventQueue {
   //                        events to come. A particle linked to a bucket since its walk began
   //                        was touched then.
   //   prefetch(i)          what update(i) reads first: particle i's record
+  //   prefetch_time(t)     the head of the bucket that update(i, t) links i to (the caller
+  //                        asks as soon as it knows a time the event may get)
   // (GCC counts a prefetch as touching no memory, so it takes a function that does nothing
   // else for one without effects and drops its calls; the empty volatile asm is an effect)
   template <class F>
@@ -121,6 +123,15 @@ class EventQueue {
   {
     asm volatile("");
     __builtin_prefetch(&node[i]);
+  }
+  // where insert() would link an event at time t: its bucket's head
+  void prefetch_time(double t) const
+  {
+    asm volatile("");
+    const double u = (t - origin) * inv_w;
+    if (!(u < (double) (cur + nb))) return;    // (beyond the calendar, or never)
+    const int64_t b = (int64_t) u;
+    __builtin_prefetch(&head[(b > cur ? b : cur) & (nb - 1)]);
   }
   double time(int i) const { return node[i].key; }
   // particle i now has event time t
