@@ -463,6 +463,12 @@ long HardsphereDomainWindow::tag_of(int a) const
   return a < nlocal ? (long) atom->tag[a] : (long) drecv[gsrc[a - nlocal] + AtomRecordAt::TAG];
 }
 
+// and its group mask
+int HardsphereDomainWindow::mask_of(int a) const
+{
+  return a < nlocal ? atom->mask[a] : (int) drecv[gsrc[a - nlocal] + AtomRecordAt::MASK];
+}
+
 // The atoms of this window in the order of their IDs: slots are given in that order, so that
 // the window does not depend on the order in which LAMMPS stores the atoms (which differs
 // between a run and its continuation from a restart file). LAMMPS reorders atoms only when it
@@ -688,7 +694,7 @@ void HardsphereDomainWindow::keep_core()
       repredicted++;
       if (a < nlocal && sowned_prev[sl]) owned_changed++;
     }
-    smask[sl] = a < nlocal ? atom->mask[a] : (int) drecv[gsrc[a - nlocal] + AtomRecordAt::MASK];
+    smask[sl] = mask_of(a);
     if (a < nlocal) {
       sowned[sl] = 1;
       lslot[a] = sl;

@@ -92,6 +92,7 @@ class HardsphereDomainWindow : protected Pointers {
   bool inside(const Region &R, const double *x, int *s) const;
   double gap_to(const double *x, int r) const;
   long tag_of(int a) const;
+  int mask_of(int a) const;
   AtomRecord record_of(int a) const;
   void frame_of(int a, const double *off, int *f) const;
   int partner_slot(const AtomRecord &r) const;
