@@ -93,8 +93,7 @@ MPI_LIBS = ("libmpi", "libopen-pal", "libopen-rte", "mca_", "libucp", "libuct", 
 # prefetch_upcoming and what it calls): from 10 MiB of records (EDOptions::prefetch_bytes), so a
 # serial run of N = 99856 does it and a rank's half only just; it buys time, not work, and
 # counting it would weigh the two runs unequally
-PREFETCH = ("EventDriven::prefetch_event", "EventDriven::prefetch_around", "EventDriven::prefetch_upcoming",
-            "EventQueue::prefetch")
+PREFETCH = ("EventDriven::prefetch_around", "EventDriven::prefetch_upcoming", "EventQueue::prefetch")
 
 
 def work_instructions(path):

@@ -370,25 +370,13 @@ void EventDriven::refresh()
   dirty.clear();
 }
 
-// Ask the memory for what the event of particle e will read while the present event is
-// processed: its records and its partner's, and the records of its first candidates (the first
-// particle of each cell around it, or its listed neighbours). Events come in time order, which
-// is random in space, so in a system larger than the cache each of these is a miss; asked for
-// ahead, they arrive while the present event is worked on. In two stages, because the
-// candidates are known only from the cell lists (or the neighbour list): for the event after
-// the next one (deep = false) the lines of those lists, for the next one (deep = true, the lists
-// asked for one event earlier) the candidates' records.
-void EventDriven::prefetch_event(int e, bool deep) const
-{
-  asm volatile("");    // (see EventQueue::prefetch_ahead)
-  if (e < 0) return;
-  __builtin_prefetch(&S[e]);
-  prefetch_cold(e);
-  prefetch_around(e, deep);
-  const int q = S[e].cpartner;
-  if (q >= 0) prefetch_partner(q);
-}
-
+// Ask the memory for what a scan of particle i will read: its records, and the records of its
+// candidates (the first particle of each cell around it, or its listed neighbours). Events
+// come in time order, which is random in space, so in a system larger than the cache each of
+// these is a miss; asked for ahead, they arrive while the events before are worked on. In two
+// stages, because the candidates are known only from the cell lists (or the neighbour list):
+// first (deep = false) the lines of those lists, one event later (deep = true) the candidates'
+// records.
 void EventDriven::prefetch_around(int i, bool deep) const
 {
   asm volatile("");    // (see EventQueue::prefetch_ahead)
@@ -435,16 +423,14 @@ void EventDriven::copy_keys()
   for (int i = 0; i < n; i++) C[i].key = key(i);
 }
 
-// The next two events (prefetch_event), and those further ahead, as the queue's walk along its
-// next buckets meets their particles (EventQueue::prefetch_ahead): in stages over the next
-// events, each reading what the one before asked for. A particle met now: its schedule and hot
+// The events ahead, as the queue's walk along its next buckets meets their particles
+// (EventQueue::prefetch_ahead): in stages over the next events, each reading what the one
+// before asked for. A particle met now: its schedule and hot
 // record; one event later the lines of the cell lists around it, and its collision partner's
 // records; two events later the records of its first candidates, and the cell lists around the
 // partner; three events later the partner's first candidates.
 void EventDriven::prefetch_upcoming()
 {
-  prefetch_event(queue.after_next(), false);
-  prefetch_event(queue.next(), true);
   Upcoming &u = upcoming;
   const int s0 = u.turn & 3, s1 = (u.turn + 3) & 3, s2 = (u.turn + 2) & 3, s3 = (u.turn + 1) & 3;
   for (int k = 0; k < u.n[s3]; k++)

@@ -651,7 +651,6 @@ class EventDriven {
   std::vector<int> cell_order() const;
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
-  void prefetch_event(int e, bool deep) const;
   void prefetch_around(int i, bool deep) const;
   // what a collision reads of i besides its hot record: its collision count, its Cold record
   // (which may straddle two cache lines) and its time of the last collision (with the TC model)

@@ -64,25 +64,6 @@ class EventQueue {
   // the particle with the earliest event (ties: the smallest index); with no finite event left,
   // some particle whose event time is infinite
   int top() const { return front.empty() ? overflow : front[0]; }
-  // the particle whose event most likely follows the top one (-1: none known), for prefetching
-  int next() const
-  {
-    const int n = (int) front.size();
-    if (n < 2) return -1;
-    return n == 2 || less(front[1], front[2]) ? front[1] : front[2];
-  }
-  // and the one after it (-1: none known)
-  int after_next() const
-  {
-    const int n = (int) front.size();
-    if (n < 3) return -1;
-    // the third of the heap: the other child of the root or a child of the second
-    const int a = less(front[1], front[2]) ? 1 : 2, b = 3 - a;
-    int best = front[b];
-    for (int c = 2 * a + 1; c <= 2 * a + 2 && c < n; c++)
-      if (less(front[c], best)) best = front[c];
-    return best;
-  }
   double top_time() const { return node[top()].key; }
   // Performance only (no effect on the order): ask the memory for the records that the next
   // calls will read. In a queue far larger than the cache every record is a miss, and the list
