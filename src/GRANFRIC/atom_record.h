@@ -58,13 +58,15 @@ struct AtomRecord {
 };
 
 // does particle p hold the state x, v (at t; last collision at tlast) and the body w, radius,
-// mass, type, bit for bit? (x, v, w: three doubles each)
+// mass, type, bit for bit? (x, v, w: three doubles each; x and v compared as bits, so a zero
+// of the other sign counts as a change)
 inline bool holds_atom(granfric::EDParticleView p, const double *x, const double *v, double t,
                        double tlast, const double *w, double radius, double mass, double type)
 {
-  return p.x.x == x[0] && p.x.y == x[1] && p.x.z == x[2] && p.v.x == v[0] && p.v.y == v[1] &&
-      p.v.z == v[2] && p.t == t && p.w.x == w[0] && p.w.y == w[1] && p.w.z == w[2] &&
-      p.a == radius && p.m == mass && p.type == (int) type && p.t_last == tlast;
+  static_assert(sizeof(granfric::Vec3) == 3 * sizeof(double), "a Vec3 is three doubles");
+  return std::memcmp(&p.x, x, sizeof p.x) == 0 && std::memcmp(&p.v, v, sizeof p.v) == 0 && p.t == t &&
+      p.w.x == w[0] && p.w.y == w[1] && p.w.z == w[2] && p.a == radius && p.m == mass &&
+      p.type == (int) type && p.t_last == tlast;
 }
 
 inline bool AtomRecord::held_by(granfric::EDParticleView p) const

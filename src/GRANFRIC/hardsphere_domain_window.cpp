@@ -518,11 +518,15 @@ AtomRecord HardsphereDomainWindow::record_of(int a) const
 // shift less its periods)
 void HardsphereDomainWindow::frame_of(int a, const double *off, int *f) const
 {
-  for (int d = 0; d < 3; d++) {
-    f[d] = 0;
-    if (d >= dim || grid_whole[d] || !domain->periodicity[d]) continue;
-    f[d] = (a < nlocal ? 0 : gshift[3 * (a - nlocal) + d]) - (int) off[d];
-  }
+  const int *gs = a < nlocal ? nullptr : &gshift[3 * (a - nlocal)];
+  for (int d = 0; d < 3; d++) f[d] = framed[d] ? (gs ? gs[d] : 0) - (int) off[d] : 0;
+}
+
+// the dimensions in which frame_of() gives shifts: periodic ones in which the cell grid does
+// not span the whole length (after grid_whole is set)
+void HardsphereDomainWindow::set_framed()
+{
+  for (int d = 0; d < 3; d++) framed[d] = d < dim && !grid_whole[d] && domain->periodicity[d];
 }
 
 // does slot sl hold atom a as its record says (state, body, frame f, which this sets, and last
@@ -652,6 +656,7 @@ bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
 // the kept core, its slots matched to this window's atoms (can_keep)
 void HardsphereDomainWindow::keep_core()
 {
+  set_framed();
   for (int sl : rm) {
     ed.remove(sl);    // an atom no longer in this rank's region
     slot_of_tag.erase(stag[sl]);
@@ -722,6 +727,7 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o)
     o.open[d] = true;
     o.period[d] = domain->prd[d];
   }
+  set_framed();
   fix.configure_core(o, false);
   const int n = nlocal + nghost, ns = n + n / 16 + 64;
   ed.resize(ns);

@@ -95,6 +95,7 @@ class HardsphereDomainWindow : protected Pointers {
   int mask_of(int a) const;
   AtomRecord record_of(int a) const;
   void frame_of(int a, const double *off, int *f) const;
+  void set_framed();
   int partner_slot(const AtomRecord &r) const;
   bool slot_holds(int a, int sl, int *f) const;
   bool links_held(int sl, const int *f, double partner, const double *poff) const;
@@ -137,6 +138,7 @@ class HardsphereDomainWindow : protected Pointers {
   double own_factor = 1.0;       // this rank's shell factor at the start of a window
   double grid_lo[3] = {0, 0, 0}, grid_hi[3] = {0, 0, 0};    // the kept cell grid (open dims)
   bool grid_whole[3] = {false, false, false};
+  bool framed[3] = {false, false, false};       // frame_of()'s dimensions (set_framed)
   granfric::IdMap slot_of_tag;                  // slot of each atom ID here
   std::vector<int> free_slots;
   std::vector<long> stag;                       // each slot's atom ID (-1: empty)
