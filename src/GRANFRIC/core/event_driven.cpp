@@ -425,10 +425,10 @@ void EventDriven::copy_keys()
 
 // The events ahead, as the queue's walk along its next buckets meets their particles
 // (EventQueue::prefetch_ahead): in stages over the next events, each reading what the one
-// before asked for. A particle met now: its schedule and hot
-// record; one event later the lines of the cell lists around it, and its collision partner's
-// records; two events later the records of its first candidates, and the cell lists around the
-// partner; three events later the partner's first candidates.
+// before asked for. A particle met now: its schedule and hot record; one event later the lines
+// of the cell lists around it, and its collision partner's records; two events later the
+// records of its first candidates, and the cell lists around the partner; three events later
+// the partner's first candidates.
 void EventDriven::prefetch_upcoming()
 {
   Upcoming &u = upcoming;
