@@ -397,27 +397,68 @@ TEST(EventDriven, EmptySlotsFilledAndEmptiedEqualFreshStart)
 }
 
 // two particles overlapping across a periodic boundary are found in boxes of any number of
-// cells (with fewer than 3 cells a dimension's neighbour cells repeat at other image shifts)
+// cells (with fewer than 3 cells a dimension's neighbour cells repeat at other image shifts),
+// with cells and with neighbour lists
 TEST(EventDriven, OverlapsAcrossPeriodicBoundaries)
 {
-  for (int dim = 2; dim <= 3; dim++)
-    for (double side : {3.0, 4.0, 10.0}) {
+  for (int neighbours : {EDOptions::CELLS, EDOptions::LISTS})
+    for (int dim = 2; dim <= 3; dim++)
+      for (double side : {3.0, 4.0, 10.0}) {
+        EventDriven ed;
+        EDOptions o;
+        o.dim = dim;
+        o.neighbours = neighbours;
+        for (int d = 0; d < 3; d++) o.hi[d] = d < dim ? side : 1.0;
+        ed.configure(o, 1, std::vector<LawParams>(4, LawParams::rough(1.0, -1.0)));
+        ed.resize(2);
+        auto a = ed.particle(0), b = ed.particle(1);
+        a.x = Vec3(0.3, 0.5 * side, dim == 3 ? 0.5 * side : 0.5);
+        b.x = Vec3(side - 0.3, 0.5 * side, dim == 3 ? 0.5 * side : 0.5);    // 0.6 apart across x = 0
+        a.a = b.a = 0.5;
+        ed.start();
+        ASSERT_EQ(ed.uses_lists(), neighbours == EDOptions::LISTS);
+        long ki, kj;
+        double depth;
+        EXPECT_EQ(ed.overlaps(1e-9, ki, kj, depth), 1) << dim << "D, box " << side;
+        EXPECT_NEAR(depth, 0.4, 1e-12);
+      }
+}
+
+// a dense gas placed at random (many pairs overlap, polydisperse): lists and cells find the same
+// overlapping pairs, the same deepest one and depth
+TEST(EventDriven, OverlapsSameWithListsAndCells)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    long n[2], ki[2], kj[2];
+    double depth[2];
+    for (int l = 0; l < 2; l++) {
       EventDriven ed;
       EDOptions o;
       o.dim = dim;
+      o.neighbours = l ? EDOptions::LISTS : EDOptions::CELLS;
+      const double side = dim == 3 ? 7.0 : 14.0;
       for (int d = 0; d < 3; d++) o.hi[d] = d < dim ? side : 1.0;
       ed.configure(o, 1, std::vector<LawParams>(4, LawParams::rough(1.0, -1.0)));
-      ed.resize(2);
-      auto a = ed.particle(0), b = ed.particle(1);
-      a.x = Vec3(0.3, 0.5 * side, dim == 3 ? 0.5 * side : 0.5);
-      b.x = Vec3(side - 0.3, 0.5 * side, dim == 3 ? 0.5 * side : 0.5);    // 0.6 apart across x = 0
-      a.a = b.a = 0.5;
+      const int np = dim == 3 ? 300 : 220;
+      ed.resize(np);
+      std::mt19937_64 rng(77 + dim);
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      for (int i = 0; i < np; i++) {
+        auto p = ed.particle(i);
+        p.x = Vec3(side * u(rng), side * u(rng), dim == 3 ? side * u(rng) : 0.5);
+        p.v = Vec3(u(rng) - 0.5, u(rng) - 0.5, dim == 3 ? u(rng) - 0.5 : 0.0);
+        p.a = 0.4 + 0.1 * u(rng);
+      }
       ed.start();
-      long ki, kj;
-      double depth;
-      EXPECT_EQ(ed.overlaps(1e-9, ki, kj, depth), 1) << dim << "D, box " << side;
-      EXPECT_NEAR(depth, 0.4, 1e-12);
+      ASSERT_EQ(ed.uses_lists(), l == 1);
+      n[l] = ed.overlaps(1e-9, ki[l], kj[l], depth[l]);
     }
+    EXPECT_GT(n[0], 10) << dim << "D";
+    EXPECT_EQ(n[0], n[1]) << dim << "D";
+    EXPECT_EQ(depth[0], depth[1]) << dim << "D";
+    EXPECT_EQ(ki[0], ki[1]) << dim << "D";
+    EXPECT_EQ(kj[0], kj[1]) << dim << "D";
+  }
 }
 
 TEST(EventDriven, GlobalKicksEqualReference)

@@ -350,6 +350,10 @@ void EventDriven::offer_lanes(Seek &k, const Entry *e, const int *js, int n)
 }
 #endif
 
+// Every pair that overlaps lies within lrad of each other's list centres, so with lists their
+// entries name every candidate (each pair at each image it is listed at); with cells, the
+// particles of the cells around each one (with fewer than 3 cells a cell is reached at two or
+// three image shifts: each is another image of its particles).
 long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) const
 {
   long count = 0;
@@ -360,33 +364,38 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
     if (S[i].gone) continue;
     const Vec3 xi = pos(i, now);
     const long ki = key(i);
+    // j at the image shift o (j's position + o P next to i), each pair once
+    auto test = [&](int j, int o0, int o1, int o2) {
+      const long kj = key(j);
+      if (ki > kj || (ki == kj && i >= j)) return;
+      const Vec3 r = xi - pos(j, now) - periods(o0, o1, o2);
+      const double sigma = H[i].a + H[j].a, lim = sigma * (1.0 - tol), r2 = norm2(r);
+      // (the root only near contact: a pair is far when r2 exceeds lim^2 by more than the
+      // roundings of the two ways of comparing)
+      if (r2 > lim * lim * (1.0 + 1e-12) || !counted(ki <= kj ? i : j)) return;
+      const double dist = std::sqrt(r2);
+      if (dist < lim) {
+        count++;
+        if (sigma - dist > depth) {
+          depth = sigma - dist;
+          key_i = ki;
+          key_j = kj;
+        }
+      }
+    };
     const int *pk = img[i].k;
-    // (with fewer than 3 cells a cell is reached at two or three image shifts: each is another
-    // image of its particles)
+    if (lists) {
+      const Entry *e = &NB[(size_t) i * LCAP];
+      for (int m = 0; m < NN[i]; m++) test(e[m].j, e[m].o[0], e[m].o[1], e[m].o[2]);
+      continue;
+    }
     int cell[27];
     int8_t k[27][3];
     const int ncell = around(i, cell, k);
     for (int f = 0; f < ncell; f++)
       for (int j = head[cell[f]]; j >= 0; j = img[j].next) {
-        if (j == i) continue;
-        const long kj = key(j);
-        if (ki > kj || (ki == kj && i > j)) continue;    // each pair once
         const int *qk = img[j].k;
-        const Vec3 shift = periods(pk[0] + k[f][0] - qk[0], pk[1] + k[f][1] - qk[1], pk[2] + k[f][2] - qk[2]);
-        const Vec3 r = xi - pos(j, now) - shift;
-        const double sigma = H[i].a + H[j].a, lim = sigma * (1.0 - tol), r2 = norm2(r);
-        // (the root only near contact: a pair is far when r2 exceeds lim^2 by more than the
-        // roundings of the two ways of comparing)
-        if (r2 > lim * lim * (1.0 + 1e-12) || !counted(ki <= kj ? i : j)) continue;
-        const double dist = std::sqrt(r2);
-        if (dist < lim) {
-          count++;
-          if (sigma - dist > depth) {
-            depth = sigma - dist;
-            key_i = ki;
-            key_j = kj;
-          }
-        }
+        test(j, pk[0] + k[f][0] - qk[0], pk[1] + k[f][1] - qk[1], pk[2] + k[f][2] - qk[2]);
       }
   }
   return count;
