@@ -473,6 +473,7 @@ void FixHardsphereED::begin_epoch(double t0)
   epoch_clock = t0;
   epoch_dt = update->dt;
   epoch_due = false;
+  written_at = NAN;
 }
 
 void FixHardsphereED::core_failed(const std::exception &e, bool collective)
@@ -527,7 +528,8 @@ AtomRecord FixHardsphereED::atom_record(int i, bool exact) const
   return r;
 }
 
-void FixHardsphereED::store_state(int i, int e, const double *off, double partner)
+void FixHardsphereED::store_state(int i, int e, const double *off, double partner,
+                                  const double *wx, const double *wv)
 {
   const auto p = std::as_const(ed).particle(e);
   double *xs = xstate[i];
@@ -539,21 +541,45 @@ void FixHardsphereED::store_state(int i, int e, const double *off, double partne
   const int *po = ed.last_offset(e);
   for (int d = 0; d < 3; d++) xs[XS_POFF + d] = partner > 0.0 ? po[d] : 0.0;
   xs[XS_TLAST] = p.t_last;
+  if (wx) {
+    std::copy_n(wx, 3, xs + XS_WX);
+    std::copy_n(wv, 3, xs + XS_WV);
+  } else {
+    xs[XS_WX] = NAN;    // (state_holds compares this first)
+  }
+}
+
+bool FixHardsphereED::states_hold(int n, double T0, const hardsphere::FarWrap &wrap)
+{
+  // (an atom that holds the x and v written at T0 passes at once: the full test would compute
+  // them again from its stored state, with its periods as they are. The rows lie one after
+  // another, as LAMMPS allocates per-atom arrays)
+  const bool written = T0 == written_at;
+  const double *xa = n > 0 ? atom->x[0] : nullptr, *va = n > 0 ? atom->v[0] : nullptr;
+  const double *xs = n > 0 ? xstate[0] : nullptr;
+  for (int i = 0; i < n; i++, xa += 3, va += 3, xs += XS_SIZE) {
+    if (written && xa[0] == xs[XS_WX] && xa[1] == xs[XS_WX + 1] && xa[2] == xs[XS_WX + 2] &&
+        va[0] == xs[XS_WV] && va[1] == xs[XS_WV + 1] && va[2] == xs[XS_WV + 2])
+      continue;
+    if (!state_holds(i, T0, wrap)) return false;
+  }
+  return true;
 }
 
 bool FixHardsphereED::state_holds(int i, double T0, const hardsphere::FarWrap &wrap)
 {
   double *xs = xstate[i];
   if (std::isnan(xs[XS_T])) return false;
+  const double *xa = atom->x[i], *va = atom->v[i];
   const granfric::Vec3 x(xs[XS_X], xs[XS_X + 1], xs[XS_X + 2]), v(xs[XS_V], xs[XS_V + 1], xs[XS_V + 2]);
   const granfric::Vec3 g(gravity[0], gravity[1], gravity[2]);
   const double dt = T0 - xs[XS_T];
   const granfric::Vec3 xw = granfric::EventDriven::flight_x(x, v, dt, g, granfric::norm2(g) != 0.0);
   const granfric::Vec3 vw = granfric::EventDriven::flight_v(v, dt, g);
   for (int d = 0; d < 3; d++) {
-    if (atom->v[i][d] != vw[d]) return false;
+    if (va[d] != vw[d]) return false;
     int off = (int) xs[XS_OFF + d];
-    if (!wrap.holds(d, atom->x[i][d], wrap.written(d, xw[d], off), off)) return false;
+    if (!wrap.holds(d, xa[d], wrap.written(d, xw[d], off), off)) return false;
     xs[XS_OFF + d] = off;
   }
   return true;
@@ -729,7 +755,7 @@ void FixHardsphereED::grow_arrays(int nmax)
   }
   if (xstate) {
     memory->grow(xstate, nmax, XS_SIZE, "hardsphere/ed:xstate");
-    for (int i = xstate_n; i < nmax; i++) xstate[i][XS_T] = std::nan("");    // (none yet)
+    for (int i = xstate_n; i < nmax; i++) xstate[i][XS_T] = xstate[i][XS_WX] = NAN;    // (none yet)
     xstate_n = std::max(xstate_n, nmax);
   }
   if (atally) {

@@ -28,6 +28,7 @@ FixStyle(hardsphere/ed,FixHardsphereED);
 #include "hardsphere_window_parts.h"
 #include "host_compat.h"
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -160,15 +161,21 @@ class FixHardsphereED : public Fix {
   // Per atom, for windows on several ranks (parallel domain): the atom's stored state as the
   // core that last owned it left it (AtomRecord), so that it goes with the atom to another rank
   // and a window built afresh (a gathered redo, a new cell grid) continues it exactly.
+  // XS_WX, XS_WV: the x and v the last domain window wrote into LAMMPS's arrays, as they were
+  // written (NaN: not written with this state), so that the next window sees that nothing
+  // else changed the atom without flying its stored state forward again.
   enum { XS_X = 0, XS_V = 3, XS_T = 6, XS_OFF = 7, XS_PARTNER = 10, XS_POFF = 11, XS_TLAST = 14,
-         XS_SIZE = 15 };
+         XS_WX = 15, XS_WV = 18, XS_SIZE = 21 };
   double **xstate = nullptr;             // (null unless kept)
   int xstate_n = 0;                      // rows set (t = NaN: none yet, when grown)
+  double written_at = NAN;               // the epoch time XS_WX and XS_WV hold (NaN: none)
   // owned atom i from core particle e at window end time T1 (off: its periods; partner: the
-  // last partner's ID, 0: none)
-  void store_state(int i, int e, const double *off, double partner);
-  // does owned atom i still hold what the last window wrote (its state at epoch time T0)?
-  // LAMMPS may have wrapped it into the box: its periods follow
+  // last partner's ID, 0: none; wx, wv: what the window wrote into x and v, or null)
+  void store_state(int i, int e, const double *off, double partner, const double *wx = nullptr,
+                   const double *wv = nullptr);
+  // do owned atoms 0..n-1 still hold what the last window wrote (their states at epoch time
+  // T0)? LAMMPS may have wrapped some into the box: their periods follow (state_holds: one atom)
+  bool states_hold(int n, double T0, const hardsphere::FarWrap &wrap);
   bool state_holds(int i, double T0, const hardsphere::FarWrap &wrap);
   class PairHardsphere *pair;
 

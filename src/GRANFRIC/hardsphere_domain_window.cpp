@@ -220,7 +220,7 @@ bool HardsphereDomainWindow::new_epoch(double t0)
   int due = fix.epoch_starts() || atom->natoms != last_natoms ? 1 : 0;
   const double start = fix.epoch_time(update->ntimestep - 1);
   const hardsphere::FarWrap wrap(domain);
-  for (int i = 0; i < nlocal && !due; i++) due = fix.state_holds(i, start, wrap) ? 0 : 1;
+  if (!due) due = fix.states_hold(nlocal, start, wrap) ? 0 : 1;
   MPI_Allreduce(MPI_IN_PLACE, &due, 1, MPI_INT, MPI_MAX, world);
   last_natoms = atom->natoms;
   if (!due) return false;
@@ -1065,10 +1065,11 @@ void HardsphereDomainWindow::commit()
     }
     FixHardsphereED::shift_image(image[i], dimg);
     const int p = ed.last_partner(e);
-    fix.store_state(i, e, off, p < 0 ? 0.0 : (double) stag[p]);
+    fix.store_state(i, e, off, p < 0 ? 0.0 : (double) stag[p], xa + 3 * i, va + 3 * i);
     if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(e).t_last, fix.epoch_clock);
     if (fix.atally) fix.store_tally(i, e);
   }
+  fix.written_at = T1;
 }
 
 // ------------------------------------------------ the statistics of all ranks
