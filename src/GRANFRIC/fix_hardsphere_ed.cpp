@@ -545,7 +545,7 @@ void FixHardsphereED::store_state(int i, int e, const double *off, double partne
     std::copy_n(wx, 3, xs + XS_WX);
     std::copy_n(wv, 3, xs + XS_WV);
   } else {
-    xs[XS_WX] = NAN;    // (state_holds compares this first)
+    xs[XS_WX] = NAN;    // (states_hold compares this first)
   }
 }
 
