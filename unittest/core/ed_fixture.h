@@ -91,11 +91,13 @@ struct CoreRun {
   double time = 0.0;
 
   // neighbours, skin, simd: how the core finds candidates (EDOptions::neighbours, list_skin,
-  // simd); prefetch_bytes: EDOptions::prefetch_bytes
+  // simd); prefetch_bytes, tick_last: EDOptions::prefetch_bytes, tick_last
   explicit CoreRun(const Reference &ref, long cap = 1000000, int neighbours = EDOptions::AUTO,
-                   double skin = 0.0, bool simd = true, long prefetch_bytes = EDOptions().prefetch_bytes)
+                   double skin = 0.0, bool simd = true, long prefetch_bytes = EDOptions().prefetch_bytes,
+                   uint32_t tick_last = EDOptions().tick_last)
   {
     EDOptions o;
+    o.tick_last = tick_last;
     o.neighbours = neighbours;
     o.list_skin = skin;
     o.simd = simd;

@@ -152,7 +152,7 @@ inline void EventDriven::settle(const Seek &k)
   Sched &s = S[k.i];
   s.ct = k.t;
   s.cpartner = k.j;
-  s.ccount = NC[k.j];
+  s.ctick = tick;
   s.coff[0] = k.o[0], s.coff[1] = k.o[1], s.coff[2] = k.o[2];
 }
 
@@ -422,13 +422,13 @@ void EventDriven::offer_both(int i, int j, int o0, int o1, int o2)
   if (t < si.ct) {
     si.ct = t;
     si.cpartner = j;
-    si.ccount = NC[j];
+    si.ctick = tick;
     si.coff[0] = o0, si.coff[1] = o1, si.coff[2] = o2;
   }
   if (t < sj.ct) {
     sj.ct = t;
     sj.cpartner = i;
-    sj.ccount = NC[i];
+    sj.ctick = tick;
     sj.coff[0] = -o0, sj.coff[1] = -o1, sj.coff[2] = -o2;
   }
 }

@@ -79,7 +79,7 @@ void EventDriven::renumber(const std::vector<int> &order)
     permute(C, order, [&](Cold &c) {
       if (c.last_partner >= 0) c.last_partner = newloc[c.last_partner];
     });
-    permute(NC, order, same);
+    permute(LC, order, same);
     permute(S, order, [&](Sched &s) {
       if (s.cpartner >= 0) s.cpartner = newloc[s.cpartner];
     });
@@ -372,7 +372,7 @@ void EventDriven::cross(int i)
   (void) q;
   const Vec3 xi = pos(i, now), vi = vel(i, now);    // (the stored state is not re-rounded)
   predict_crossing(i, xi, vi);
-  if (p.ct < NEVER && NC[p.cpartner] != p.ccount) {
+  if (p.ct < NEVER && stale(p)) {
     // the stored collision candidate went stale: look at every neighbouring cell
     p.ct = NEVER;
     p.cpartner = -1;

@@ -112,7 +112,7 @@ void EventDriven::resize(int n)
   acct = EDAccounting();
   H.assign(n, Hot());
   C.assign(n, Cold());
-  NC.assign(n, 0);
+  LC.assign(n, 0);
   TL.assign(opt.tc > 0.0 ? n : 0, -INF);
   S.assign(n, Sched());
   WT.clear();
@@ -199,8 +199,7 @@ void EventDriven::collide_pair(int e)
     note_speed(i, hp.v);
     note_speed(j, hq.v);
   }
-  NC[i]++;
-  NC[j]++;
+  turned(i, j);
   p.last_partner = j;
   q.last_partner = i;
   for (int d = 0; d < 3; d++) {
@@ -245,8 +244,9 @@ void EventDriven::start_common()
   const int n = (int) H.size();
   for (auto &s : S) s.ncollisions = 0;
   WT.assign(opt.walls.empty() ? 0 : n, NEVER);
+  tick = 0;
   for (int i = 0; i < n; i++) {
-    NC[i] = 0;
+    LC[i] = 0;
     if (opt.dim == 2) {
       H[i].v.z = 0.0;
       C[i].w.x = C[i].w.y = 0.0;
@@ -300,7 +300,7 @@ void EventDriven::remove(int e)
   s.gone = 1;
   no_events(i);
   s.ekind = NONE;
-  NC[i]++;    // predictions that involved it are stale
+  turned(i);    // predictions that involved it are stale
   C[i].last_partner = -1;
 }
 
@@ -320,7 +320,7 @@ void EventDriven::changed(int e, bool own_time)
   s.gone = 0;
   if (!own_time) p.t = now;
   if (!(p.t <= now)) throw std::invalid_argument("changed: a particle's stored time lies after now");
-  NC[i]++;    // every prediction that involved it is stale
+  turned(i);    // every prediction that involved it is stale
   c.last_partner = -1;
   if (opt.dim == 2) {
     p.v.z = 0.0;
@@ -487,7 +487,7 @@ EDStats EventDriven::advance_to(double t_end)
     now = et;
     if (far) prefetch_upcoming();
     if (p.ekind == COLLISION) {
-      if (NC[p.cpartner] != p.ccount) {
+      if (stale(p)) {
         predict(i);    // the partner changed course: stale prediction
         reschedule(i);
       } else {
@@ -532,7 +532,7 @@ void EventDriven::global_event(int k)
   for (int i = 0; i < n; i++) {
     Hot &h = H[i];
     Cold &p = C[i];
-    NC[i]++;    // every trajectory changed: all stored predictions are stale
+    turned(i);    // every trajectory changed: all stored predictions are stale
     p.last_partner = -1;
     if (opt.dim == 2) {
       h.v.z = 0.0;
@@ -544,6 +544,17 @@ void EventDriven::global_event(int k)
   std::vector<double> times(n);
   for (int i = 0; i < n; i++) times[i] = schedule(i);
   queue.build(times);
+}
+
+void EventDriven::retick()
+{
+  const int n = (int) S.size();
+  for (int i = 0; i < n; i++) {
+    Sched &s = S[i];
+    if (s.cpartner >= 0) s.ctick = stale(s) ? 0 : 1;
+  }
+  for (int i = 0; i < n; i++) LC[i] = 1;
+  tick = 1;
 }
 
 void EventDriven::rebase(double dt)

@@ -8,7 +8,7 @@
 // cell grid (cell width >= largest contact distance) kept exact by cell-crossing events, or, in
 // dense 3d systems, from neighbour lists kept exact by list-rebuild events (neighbour_lists.cpp),
 // so no pair can be missed whatever the window length. Per-particle local times and lazy updates, one
-// scheduled event per particle, invalidation by collision counters, a calendar queue
+// scheduled event per particle, invalidation by a clock of trajectory changes, a calendar queue
 // (event_queue.h), and the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
 // the window (periodic images are tracked by integer offsets, not by moving particles).
 // The cell grid cannot change the rounding: a particle's stored state changes only at its own
@@ -147,6 +147,10 @@ struct EDOptions {
   // the same bits). Below, the records mostly stay in the cache and asking costs up to 13 %
   // (bench/README.md)
   long prefetch_bytes = 10L << 20;
+  // the clock of trajectory changes that marks stale predictions starts again from 1 once it
+  // reaches this value (the predictions keep what they were; for tests of that restart, which
+  // the 32-bit clock otherwise reaches after about 4e9 collisions)
+  uint32_t tick_last = 0xfffffffeu;
 };
 
 struct EDStats {
@@ -390,7 +394,7 @@ class EventDriven {
   // bytes held (particles, index maps, cells, queue, optional records)
   size_t memory_bytes() const
   {
-    return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) + NC.capacity() * sizeof(uint32_t) +
+    return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) + LC.capacity() * sizeof(uint32_t) +
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
         XW.capacity() * sizeof(Vec3) + NB.capacity() * sizeof(Entry) + NN.capacity() +
@@ -471,11 +475,26 @@ class EventDriven {
   static_assert(sizeof(Cold) == 48, "the key, w, m and the last partner: 48 bytes");
   big_vector<Hot> H;
   big_vector<Cold> C;
-  // collisions since start() (and other changes of the trajectory): a prediction stores its
-  // partner's count and is stale when it changed. Apart, 4 bytes per particle, since a scan
-  // reads the count of its best candidate and the event loop the one of each event's partner:
-  // in a large system a dense array misses the cache less often than the records would
-  big_vector<uint32_t> NC;
+  // Stale predictions. Every change of a particle's trajectory (a collision, a wall, a change
+  // from outside) advances one clock, tick, and stores it as the particle's LC; a prediction
+  // stores the tick at which it was made (Sched::ctick) and is stale once its partner's LC is
+  // later. So a scan writes its best candidate without reading anything of it, and the event
+  // loop reads the LC of each event's partner: apart, 4 bytes per particle, since in a large
+  // system a dense array misses the cache less often than the records would
+  big_vector<uint32_t> LC;
+  uint32_t tick = 0;
+  void turned(int i)
+  {
+    if (tick >= opt.tick_last) retick();
+    LC[i] = ++tick;
+  }
+  void turned(int i, int j)
+  {
+    if (tick >= opt.tick_last) retick();
+    LC[i] = LC[j] = ++tick;
+  }
+  void retick();    // the clock back to 1, every prediction as stale or fresh as it was
+                    // (past EDOptions::tick_last)
   big_vector<double> TL;                 // time of the last collision (only with tc > 0)
   double tl_none = -INF;                 // what t_last refers to without the TC model
   static constexpr double TL_NONE = -INF;    // (read-only views: no store to tl_none)
@@ -511,7 +530,7 @@ class EventDriven {
     int8_t xdim : 4, xdir : 4;    // crossing dimension and direction (+1 / -1)
     int8_t wall = -1;         // which wall
     int cpartner = -1;        // collision candidate: partner,
-    uint32_t ccount = 0;      //   partner's count NC at prediction (stale when it changed),
+    uint32_t ctick = 0;       //   the tick at prediction (stale when the partner's LC is later),
     uint32_t ncollisions = 0; // collisions in this window (event cap)
     int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * P
     int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
@@ -520,6 +539,8 @@ class EventDriven {
     Sched() : xdim(0), xdir(0) {}
   };
   static_assert(sizeof(Sched) == 64, "a particle's schedule fills one cache line");
+  // whether a schedule's collision candidate went stale: its partner changed course since
+  bool stale(const Sched &s) const { return LC[s.cpartner] > s.ctick; }
   big_vector<Sched> S;
   big_vector<double> WT;                 // next wall collision: time (empty without walls)
   // periodic image of each particle's cell, and the next particle in its cell's list: what
@@ -652,12 +673,12 @@ class EventDriven {
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
   void prefetch_around(int i, bool deep) const;
-  // what a collision reads of i besides its hot record: its collision count, its Cold record
+  // what an event reads of i besides its hot record: its change tick (LC), its Cold record
   // (which may straddle two cache lines) and its time of the last collision (with the TC model)
   void prefetch_cold(int i) const
   {
     asm volatile("");    // (see EventQueue::prefetch_ahead)
-    __builtin_prefetch(&NC[i]);
+    __builtin_prefetch(&LC[i]);
     __builtin_prefetch(&C[i]);
     __builtin_prefetch(reinterpret_cast<const char *>(&C[i]) + sizeof(Cold) - 1);
     if (!TL.empty()) __builtin_prefetch(&TL[i]);
@@ -752,11 +773,10 @@ class EventDriven {
   // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV, bool LATEST>
   void offer(Seek &k, int j, int o0, int o1, int o2);
-  // (the best so far; its collision counter, which settle() reads, asked for from the memory
-  // now, while the scan goes on, and so is the queue's bucket for its time)
+  // (the best so far; the queue's bucket for its time asked for from the memory now, while the
+  // scan goes on)
   void take(Seek &k, double t, int j, int o0, int o1, int o2)
   {
-    __builtin_prefetch(&NC[j]);
     if (far) queue.prefetch_time(t);
     k.t = t;
     k.h = horizon_limit(t - k.p.t, t);

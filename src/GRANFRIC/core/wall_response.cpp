@@ -75,7 +75,7 @@ void EventDriven::collide_wall(int i)
   p.w = c.w1;
   if (!TL.empty()) TL[i] = t;
   if (tracking_fast()) note_speed(i, h.v);
-  NC[i]++;
+  turned(i);
   p.last_partner = -1;
   const long ni = ++s.ncollisions;
   record_wall(i, s.wall, t, n, dP, c, dE_tr, dE_rot, tc_elastic, ni);
