@@ -79,7 +79,6 @@ void EventDriven::renumber(const std::vector<int> &order)
     permute(C, order, [&](Cold &c) {
       if (c.last_partner >= 0) c.last_partner = newloc[c.last_partner];
     });
-    permute(LC, order, same);
     permute(S, order, [&](Sched &s) {
       if (s.cpartner >= 0) s.cpartner = newloc[s.cpartner];
     });

@@ -112,7 +112,6 @@ void EventDriven::resize(int n)
   acct = EDAccounting();
   H.assign(n, Hot());
   C.assign(n, Cold());
-  LC.assign(n, 0);
   TL.assign(opt.tc > 0.0 ? n : 0, -INF);
   S.assign(n, Sched());
   WT.clear();
@@ -246,7 +245,7 @@ void EventDriven::start_common()
   WT.assign(opt.walls.empty() ? 0 : n, NEVER);
   tick = 0;
   for (int i = 0; i < n; i++) {
-    LC[i] = 0;
+    C[i].changed = 0;
     if (opt.dim == 2) {
       H[i].v.z = 0.0;
       C[i].w.x = C[i].w.y = 0.0;
@@ -553,7 +552,7 @@ void EventDriven::retick()
     Sched &s = S[i];
     if (s.cpartner >= 0) s.ctick = stale(s) ? 0 : 1;
   }
-  for (int i = 0; i < n; i++) LC[i] = 1;
+  for (int i = 0; i < n; i++) C[i].changed = 1;
   tick = 1;
 }
 

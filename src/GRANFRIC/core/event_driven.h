@@ -394,7 +394,7 @@ class EventDriven {
   // bytes held (particles, index maps, cells, queue, optional records)
   size_t memory_bytes() const
   {
-    return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) + LC.capacity() * sizeof(uint32_t) +
+    return H.capacity() * sizeof(Hot) + C.capacity() * sizeof(Cold) +
         TL.capacity() * sizeof(double) + S.capacity() * sizeof(Sched) + WT.capacity() * sizeof(double) +
         img.capacity() * sizeof(Image) + (ext.capacity() + loc.capacity()) * sizeof(int) +
         XW.capacity() * sizeof(Vec3) + NB.capacity() * sizeof(Entry) + NN.capacity() +
@@ -471,27 +471,27 @@ class EventDriven {
     Vec3 w;                   // angular velocity
     double m = 1.0;           // mass (the shape factor q is its type's: qt)
     int last_partner = -1;    // partner of the last collision
+    uint32_t changed = 0;     // the tick of its last change of trajectory (see tick)
   };
-  static_assert(sizeof(Cold) == 48, "the key, w, m and the last partner: 48 bytes");
+  static_assert(sizeof(Cold) == 48, "the key, w, m, the last partner and the tick: 48 bytes");
   big_vector<Hot> H;
   big_vector<Cold> C;
   // Stale predictions. Every change of a particle's trajectory (a collision, a wall, a change
-  // from outside) advances one clock, tick, and stores it as the particle's LC; a prediction
-  // stores the tick at which it was made (Sched::ctick) and is stale once its partner's LC is
-  // later. So a scan writes its best candidate without reading anything of it, and the event
-  // loop reads the LC of each event's partner: apart, 4 bytes per particle, since in a large
-  // system a dense array misses the cache less often than the records would
-  big_vector<uint32_t> LC;
+  // from outside) advances one clock, tick, and stores it in the particle's Cold record
+  // (changed); a prediction stores the tick at which it was made (Sched::ctick) and is stale
+  // once its partner changed later. So a scan writes its best candidate without reading
+  // anything of it, and the event loop reads the Cold record of each event's partner, which a
+  // valid collision needs anyway
   uint32_t tick = 0;
   void turned(int i)
   {
     if (tick >= opt.tick_last) retick();
-    LC[i] = ++tick;
+    C[i].changed = ++tick;
   }
   void turned(int i, int j)
   {
     if (tick >= opt.tick_last) retick();
-    LC[i] = LC[j] = ++tick;
+    C[i].changed = C[j].changed = ++tick;
   }
   void retick();    // the clock back to 1, every prediction as stale or fresh as it was
                     // (past EDOptions::tick_last)
@@ -530,7 +530,7 @@ class EventDriven {
     int8_t xdim : 4, xdir : 4;    // crossing dimension and direction (+1 / -1)
     int8_t wall = -1;         // which wall
     int cpartner = -1;        // collision candidate: partner,
-    uint32_t ctick = 0;       //   the tick at prediction (stale when the partner's LC is later),
+    uint32_t ctick = 0;       //   the tick at prediction (stale when the partner changed later),
     uint32_t ncollisions = 0; // collisions in this window (event cap)
     int coff[3] = {0, 0, 0};  //   partner's unwrapped position is shifted by coff * P
     int last_off[3] = {0, 0, 0};    // periodic image offset of the last partner (see coff)
@@ -540,7 +540,7 @@ class EventDriven {
   };
   static_assert(sizeof(Sched) == 64, "a particle's schedule fills one cache line");
   // whether a schedule's collision candidate went stale: its partner changed course since
-  bool stale(const Sched &s) const { return LC[s.cpartner] > s.ctick; }
+  bool stale(const Sched &s) const { return C[s.cpartner].changed > s.ctick; }
   big_vector<Sched> S;
   big_vector<double> WT;                 // next wall collision: time (empty without walls)
   // periodic image of each particle's cell, and the next particle in its cell's list: what
@@ -673,12 +673,11 @@ class EventDriven {
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
   void prefetch_around(int i, bool deep) const;
-  // what an event reads of i besides its hot record: its change tick (LC), its Cold record
+  // what an event reads of i besides its hot record: its Cold record
   // (which may straddle two cache lines) and its time of the last collision (with the TC model)
   void prefetch_cold(int i) const
   {
     asm volatile("");    // (see EventQueue::prefetch_ahead)
-    __builtin_prefetch(&LC[i]);
     __builtin_prefetch(&C[i]);
     __builtin_prefetch(reinterpret_cast<const char *>(&C[i]) + sizeof(Cold) - 1);
     if (!TL.empty()) __builtin_prefetch(&TL[i]);
