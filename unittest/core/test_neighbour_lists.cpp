@@ -170,8 +170,6 @@ TEST(NeighbourLists, AutomaticChoiceAndLimits)
   EXPECT_TRUE(uses_lists(3, 0.45, false));
   EXPECT_FALSE(uses_lists(3, 0.45, true));
   EXPECT_FALSE(uses_lists(3, 0.1, false));
-  EXPECT_TRUE(uses_lists(3, 0.36, false)) << "n sigma^3 = 0.69: lists";
-  EXPECT_FALSE(uses_lists(3, 0.33, false)) << "n sigma^3 = 0.63: cells";
   EXPECT_FALSE(uses_lists(2, 0.45, false));
   EXPECT_TRUE(uses_lists(3, 0.45, false, 13824));
   EXPECT_FALSE(uses_lists(3, 0.45, false, (int) EventDriven::MAX_LISTS + 1))

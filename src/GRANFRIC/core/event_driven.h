@@ -333,7 +333,6 @@ class EventDriven {
   static bool have_lanes();              // the processor has AVX2 (EDOptions::simd can use it)
   bool uses_lists() const { return lists; }     // neighbour lists (after start())
   static constexpr long MAX_LISTS = 40000;    // the most particles that get lists automatically
-  static constexpr double LISTS_FROM = 0.65;   // the least n sigma^3 that gets lists automatically
   // the width of cells the core chooses for number density n (EDOptions::cell_width = 0), with
   // sigma the largest contact distance
   static double auto_cell_width(int dim, double sigma, double n);

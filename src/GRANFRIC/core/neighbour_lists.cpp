@@ -15,19 +15,18 @@
 namespace granfric {
 
 
-// Lists pay in dense 3d gases: from about n sigma^3 = 0.65 (packing fraction 0.34), up to about
+// Lists pay in dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to about
 // 40000 particles, while their records (about 500 bytes per particle with the lists, against
 // about 220 with cells) fit the last-level cache. Measured with bench_core against cells, elastic
 // spheres, a machine with 32 MB of shared last-level cache (bench/README.md): about a third
 // fewer instructions per collision; with both testing candidates in AVX2 lanes and the skin at
 // 0.6, at fraction 0.45 faster by 31 % at N = 4000 and by 9 - 25 % at 10976 - 32000, at 0.40 by
 // 22 % at 4000 and 15 % at 10976, alike at 32000; beyond about 5 x 10^4 particles, or while
-// another process shares the cache, slower. Below n sigma^3 = 0.75 the skin is 0.8: at fraction
-// 0.35 such lists are faster than cells by 2 - 10 % at N = 4000 - 32000, alike at 0.34, slower
-// by 7 % at 0.33 and by 21 % at 0.30 (N = 32000); in 2d cells are cheaper.
+// another process shares the cache, slower. At fraction 0.35 lists and cells are alike at
+// N = 32000 (lists with a skin of 0.8 faster by 5 % at 4000); in 2d cells are cheaper.
 bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 {
-  return dim == 3 && n * sigma * sigma * sigma >= LISTS_FROM && count <= MAX_LISTS;
+  return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= MAX_LISTS;
 }
 
 // Decide whether this start() uses lists and size them (the cells come after, at least lrad
@@ -46,10 +45,9 @@ void EventDriven::setup_lists(double sigma)
   NB.clear();
   NN.clear();
   if (!lists) return;
-  // (measured with the candidates in lanes: from n sigma^3 = 0.75 0.6 faster than 0.4 by 3 - 8 %,
-  // 0.7 and 0.8 alike or slower; below, 0.8 faster than 0.6 by 2 - 5 %; bench/README.md)
-  const double nsig3 = vol > 0.0 ? present / vol * sigma * sigma * sigma : 0.0;
-  const double skin = opt.list_skin > 0.0 ? opt.list_skin : nsig3 < 0.75 ? 0.8 : 0.6;
+  // (measured with the candidates in lanes: 0.6 faster than 0.4 by 3 - 8 %, 0.7 and 0.8 alike
+  // or slower; bench/README.md)
+  const double skin = opt.list_skin > 0.0 ? opt.list_skin : 0.6;
   lskin = 0.5 * skin * sigma;
   const double lrad = (sigma + 2.0 * lskin) * (1.0 + 1e-9);
   lrad2 = lrad * lrad;
