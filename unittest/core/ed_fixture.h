@@ -156,6 +156,21 @@ struct CoreRun {
   {
     while (time < T - 1e-12 * T) window(std::min(dt, T - time));
   }
+  // windows of dt up to T, every particle's velocity turned by a right angle about z at the
+  // middle of each window (a global event: every prediction goes stale, the temperature stays)
+  void run_turning(double T, double dt)
+  {
+    while (time < T - 1e-12 * T) {
+      std::vector<double> turn = {0.5 * dt};
+      ed.set_global_events(turn, [this](int) {
+        for (int e = 0; e < ed.size(); e++) {
+          Vec3 &v = ed.particle(e).v;
+          v = Vec3(v.y, -v.x, v.z);
+        }
+      });
+      window(dt);
+    }
+  }
 };
 
 // how many particles of two runs of one system differ in some bit of x, v or w at window time 0

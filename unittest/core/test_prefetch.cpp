@@ -20,16 +20,7 @@ namespace {
 CoreRun run_prefetching(const Reference &ref, int neighbours, long prefetch_bytes, double dt, double T)
 {
   CoreRun run(ref, 1000000, neighbours, 0.0, true, prefetch_bytes);
-  while (run.time < T - 1e-12 * T) {
-    std::vector<double> kick = {0.5 * dt};
-    run.ed.set_global_events(kick, [&run](int) {
-      for (int e = 0; e < run.ed.size(); e++) {
-        Vec3 &v = run.ed.particle(e).v;
-        v = Vec3(v.y, -v.x, v.z);    // (a rotation: the temperature stays)
-      }
-    });
-    run.window(dt);
-  }
+  run.run_turning(T, dt);
   return run;
 }
 

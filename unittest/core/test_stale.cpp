@@ -4,7 +4,7 @@
 // 32-bit clock, and a prediction is stale once its partner changed after it was made. When the
 // clock nears its end it starts again from 1 with every prediction as stale or fresh as it was
 // (EventDriven::retick). Restarting it every few dozen changes must leave every trajectory the
-// same bits as never restarting it, with cells and lists, walls, kicks (which mark every
+// same bits as never restarting it, with cells and lists, walls and gravity, kicks (which mark every
 // prediction stale) and the TC model, in 2d and 3d.
 #include "ed_fixture.h"
 
@@ -21,16 +21,7 @@ namespace {
 CoreRun run_ticking(const Reference &ref, int neighbours, uint32_t tick_last, double dt, double T)
 {
   CoreRun run(ref, 1000000, neighbours, 0.0, true, EDOptions().prefetch_bytes, tick_last);
-  while (run.time < T - 1e-12 * T) {
-    std::vector<double> kick = {0.5 * dt};
-    run.ed.set_global_events(kick, [&run](int) {
-      for (int e = 0; e < run.ed.size(); e++) {
-        Vec3 &v = run.ed.particle(e).v;
-        v = Vec3(-v.y, v.x, v.z);
-      }
-    });
-    run.window(dt);
-  }
+  run.run_turning(T, dt);
   return run;
 }
 
