@@ -64,13 +64,26 @@ LANES Shifts image_shifts(const int *pk, const int *const k[4])
                 _mm_sub_epi32(_mm_set1_epi32(pk[2]), _mm_unpacklo_epi64(kc, kd))};
 }
 
-// the shift bytes of four 8-byte list entries (index, three signed bytes, one more byte)
-LANES Shifts entry_shifts(const void *entries)
+// the shift bytes of four 8-byte list entries (index, three signed bytes, one more byte), one
+// 32-bit lane per entry
+LANES __m128i entry_shift_bytes(const void *entries)
 {
-  const __m128i sh = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(
-      _mm256_loadu_si256((const __m256i *) entries), _mm256_setr_epi32(1, 3, 5, 7, 1, 3, 5, 7)));
+  return _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(_mm256_loadu_si256((const __m256i *) entries),
+                                                            _mm256_setr_epi32(1, 3, 5, 7, 1, 3, 5, 7)));
+}
+
+// the shifts of entry_shift_bytes()
+LANES Shifts entry_shifts(__m128i sh)
+{
   return Shifts{_mm_srai_epi32(_mm_slli_epi32(sh, 24), 24), _mm_srai_epi32(_mm_slli_epi32(sh, 16), 24),
                 _mm_srai_epi32(_mm_slli_epi32(sh, 8), 24)};
+}
+
+// whether any of the first live lanes has a shift (bits: the bits of a lane that hold shifts)
+LANES bool shifted(__m128i sh, int bits, int live)
+{
+  const __m128i in = _mm_cmpgt_epi32(_mm_set1_epi32(live), _mm_setr_epi32(0, 1, 2, 3));
+  return !_mm_testz_si128(sh, _mm_and_si128(in, _mm_set1_epi32(bits)));
 }
 
 // contact_root()'s horizon test from b, c, w2 and -b, -disc, with the horizon limits h: bit l
@@ -131,16 +144,28 @@ __attribute__((target("avx2"))) void EventDriven::offer_lanes(Seek &k, const Ent
     const __m256d ux = ahead_by(_mm256_set1_pd(k.p.v.x), dt, _mm256_set1_pd(g.x), keep);
     const __m256d uy = ahead_by(_mm256_set1_pd(k.p.v.y), dt, _mm256_set1_pd(g.y), keep);
     const __m256d uz = ahead_by(_mm256_set1_pd(k.p.v.z), dt, _mm256_set1_pd(g.z), keep);
-    // q at tr; the separation less the image shift (0 P where a lane has none leaves it as it is)
+    // q at tr; the separation less the image shift
     const __m256d dq = _mm256_sub_pd(tr, q.t);
-    const int *kl[4] = {img[jl[0]].k, img[jl[1]].k, img[jl[2]].k, img[jl[3]].k};
-    const Shifts o = CELLS ? image_shifts(pk, kl) : entry_shifts(el);
-    const __m256d rx = _mm256_sub_pd(_mm256_sub_pd(ax, _mm256_add_pd(q.x, _mm256_mul_pd(dq, q.vx))),
-                                     _mm256_mul_pd(_mm256_cvtepi32_pd(o.o0), _mm256_set1_pd(P.x)));
-    const __m256d ry = _mm256_sub_pd(_mm256_sub_pd(ay, _mm256_add_pd(q.y, _mm256_mul_pd(dq, q.vy))),
-                                     _mm256_mul_pd(_mm256_cvtepi32_pd(o.o1), _mm256_set1_pd(P.y)));
-    const __m256d rz = _mm256_sub_pd(_mm256_sub_pd(az, _mm256_add_pd(q.z, _mm256_mul_pd(dq, q.vz))),
-                                     _mm256_mul_pd(_mm256_cvtepi32_pd(o.o2), _mm256_set1_pd(P.z)));
+    __m256d rx = _mm256_sub_pd(ax, _mm256_add_pd(q.x, _mm256_mul_pd(dq, q.vx)));
+    __m256d ry = _mm256_sub_pd(ay, _mm256_add_pd(q.y, _mm256_mul_pd(dq, q.vy)));
+    __m256d rz = _mm256_sub_pd(az, _mm256_add_pd(q.z, _mm256_mul_pd(dq, q.vz)));
+    // (mostly every lane has none, and x - 0 P is x: then nothing to subtract)
+    Shifts o;
+    bool any;
+    if (CELLS) {
+      const int *kl[4] = {img[jl[0]].k, img[jl[1]].k, img[jl[2]].k, img[jl[3]].k};
+      o = image_shifts(pk, kl);
+      any = shifted(_mm_or_si128(_mm_or_si128(o.o0, o.o1), o.o2), -1, live);
+    } else {
+      const __m128i sh = entry_shift_bytes(el);
+      any = shifted(sh, 0x00ffffff, live);
+      if (any) o = entry_shifts(sh);
+    }
+    if (any) {
+      rx = _mm256_sub_pd(rx, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o0), _mm256_set1_pd(P.x)));
+      ry = _mm256_sub_pd(ry, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o1), _mm256_set1_pd(P.y)));
+      rz = _mm256_sub_pd(rz, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o2), _mm256_set1_pd(P.z)));
+    }
     const __m256d vx = _mm256_sub_pd(ux, q.vx), vy = _mm256_sub_pd(uy, q.vy), vz = _mm256_sub_pd(uz, q.vz);
     const __m256d b = dot4(rx, ry, rz, vx, vy, vz), sig = _mm256_add_pd(pa, q.a);
     const __m256d c = _mm256_sub_pd(dot4(rx, ry, rz, rx, ry, rz), _mm256_mul_pd(sig, sig));
