@@ -542,8 +542,10 @@ void FixHardsphereED::store_state(int i, int e, const double *off, double partne
   for (int d = 0; d < 3; d++) xs[XS_POFF + d] = partner > 0.0 ? po[d] : 0.0;
   xs[XS_TLAST] = p.t_last;
   if (wx) {
-    std::copy_n(wx, 3, xs + XS_WX);
-    std::copy_n(wv, 3, xs + XS_WV);
+    for (int d = 0; d < 3; d++) {    // (element by element: copy_n of three called memcpy)
+      xs[XS_WX + d] = wx[d];
+      xs[XS_WV + d] = wv[d];
+    }
   } else {
     xs[XS_WX] = NAN;    // (states_hold compares this first)
   }

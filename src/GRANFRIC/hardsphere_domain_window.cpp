@@ -396,8 +396,8 @@ void HardsphereDomainWindow::send_copies()
   for (int i = 0; i < nlocal; i++)
     if (sent[i]) sendlist.push_back(i);
   // each sent atom's record once, then copied to every rank that gets it
-  std::vector<double> &rec = hsend;    // (as scratch until the histories)
-  rec.resize(sendlist.size() * NPACK);
+  std::vector<double> &rec = srec;
+  rec.resize(sendlist.size() * NPACK);    // (about as many as the last window's: little to fill)
   send_index.assign(nlocal, -1);
   for (size_t k = 0; k < sendlist.size(); k++) {
     fix.atom_record(sendlist[k], !epoch_now).write(&rec[k * NPACK]);
@@ -1097,7 +1097,7 @@ void HardsphereDomainWindow::sum_statistics()
 double HardsphereDomainWindow::memory_usage() const
 {
   auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };
-  return bytes(history) + bytes(dsend) + bytes(drecv) + bytes(hsend) + bytes(hrecv) + bytes(stag) +
+  return bytes(history) + bytes(srec) + bytes(dsend) + bytes(drecv) + bytes(hsend) + bytes(hrecv) + bytes(stag) +
       bytes(smask) + bytes(kick_tags) + (double) slot_of_tag.memory_bytes() + bytes(free_slots) + bytes(lslot) +
       bytes(sowned) + bytes(sowned_prev) + bytes(sseen) + bytes(sent) + bytes(inslot) +
       bytes(evlist) + bytes(cslot) + bytes(watch) + bytes(gsrc) + bytes(start) + bytes(fill) +

@@ -155,8 +155,9 @@ class HardsphereDomainWindow : protected Pointers {
   // list), the slot of each atom, the copies' slots, their records in drecv and image shifts,
   // the watched slots (copies, then sent atoms) and each slot's place among them (-1: none),
   // the events of each watched slot (evlist from start), influence times, where each copy's
-  // history was received, slots to empty
-  std::vector<double> dsend, drecv, hsend, hrecv;
+  // history was received, slots to empty; the sent atoms' records once each (srec: a vector
+  // of its own, so that it keeps its size from window to window and is not filled anew)
+  std::vector<double> srec, dsend, drecv, hsend, hrecv;
   std::vector<granfric::EDEvent> history;
   std::vector<char> sent;
   std::vector<int> sendlist, wlist, widx, rm, inslot, evlist, cslot, gsrc, start, fill, gshift;
