@@ -370,11 +370,11 @@ void EventDriven::refresh()
 }
 
 // Ask the memory for what a scan of particle i will read: its records, and the records of its
-// candidates (the first particle of each cell around it, or its listed neighbours). Events
-// come in time order, which is random in space, so in a system larger than the cache each of
-// these is a miss; asked for ahead, they arrive while the events before are worked on. In two
-// stages, because the candidates are known only from the cell lists (or the neighbour list):
-// first (deep = false) the lines of those lists, one event later (deep = true) the candidates'
+// candidates (the first particle of each cell around it; with neighbour lists only the list).
+// Events come in time order, which is random in space, so in a system larger than the cache
+// each of these is a miss; asked for ahead, they arrive while the events before are worked
+// on. In two stages, because the candidates are known only from the cell lists: first
+// (deep = false) the lines of those lists, one event later (deep = true) the candidates'
 // records.
 void EventDriven::prefetch_around(int i, bool deep) const
 {
@@ -382,13 +382,13 @@ void EventDriven::prefetch_around(int i, bool deep) const
   __builtin_prefetch(&H[i]);
   __builtin_prefetch(&img[i]);
   if (lists) {
+    // the lines of its list; not its neighbours' records: the entries name them directly, so
+    // a scan's loads of them do not wait on one another and the processor overlaps them
+    // (asking for them too was slower, bench/README.md)
+    if (deep) return;
     const Entry *e = &NB[(size_t) i * LCAP];
-    if (!deep) {
-      __builtin_prefetch(e);
-      __builtin_prefetch(e + 64 / sizeof(Entry));    // (the next cache line)
-      return;
-    }
-    for (int m = 0; m < NN[i]; m++) __builtin_prefetch(&H[e[m].j]);
+    __builtin_prefetch(e);
+    __builtin_prefetch(e + 64 / sizeof(Entry));    // (the next cache line)
     return;
   }
   // the cells around the one the particle is in, or, where its event is a crossing, the one
