@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // The event queue against an ordered set: the same (time, index) order under random updates,
-// ties, infinite times, far-future events and time shifts; the two following events where known.
+// ties, infinite times, far-future events and time shifts, with links to later buckets made at
+// once and made a few updates later; the two following events where known.
 #include "core/event_queue.h"
 
 #include <gtest/gtest.h>
@@ -23,8 +24,9 @@ constexpr double INF = std::numeric_limits<double>::infinity();
 // Simulates an event loop: pop the earliest, give it a later time, sometimes change others.
 // p_shift: chance per step of a new window, whose shift is the current time (odd = false) or
 // an arbitrary fraction of it (odd = true: times and the calendar's origin then round apart)
+// wait: links to later buckets wait (EventQueue::set_wait_from(0)), as in large queues
 void run_against_set(int n, unsigned seed, double spread, double p_inf, double p_far, int steps,
-                     double p_shift = 0.001, bool odd = false)
+                     double p_shift = 0.001, bool odd = false, bool wait = false)
 {
   std::mt19937_64 gen(seed);
   std::uniform_real_distribution<double> U(0.0, 1.0);
@@ -39,6 +41,7 @@ void run_against_set(int n, unsigned seed, double spread, double p_inf, double p
   std::vector<double> t(n);
   for (auto &x : t) x = draw(0.0);
   EventQueue q;
+  if (wait) q.set_wait_from(0);
   q.build(t);
   std::set<std::pair<double, int>> ref;
   for (int i = 0; i < n; i++) ref.insert({t[i], i});
@@ -89,6 +92,16 @@ TEST(EventQueue, FrequentArbitraryShifts)
   // or previous bucket, or make two times equal; the order must stay exactly (time, index)
   run_against_set(1000, 5, 1.0, 0.05, 0.01, 200000, 0.02, true);
   run_against_set(200, 6, 1e-7, 0.0, 0.0, 100000, 0.05, true);
+}
+
+TEST(EventQueue, WaitingLinksKeepTheOrder)
+{
+  // every link to a later bucket waits a few updates, with removals of waiting events, the
+  // front emptying (which makes the waiting links first) and shifts
+  run_against_set(1000, 7, 1.0, 0.0, 0.0, 200000, 0.001, false, true);
+  run_against_set(1000, 8, 1.0, 0.05, 0.01, 200000, 0.02, true, true);
+  run_against_set(500, 9, 1.0, 0.2, 0.02, 100000, 0.001, false, true);
+  run_against_set(3, 10, 1.0, 0.1, 0.1, 10000, 0.001, false, true);
 }
 
 TEST(EventQueue, InfiniteAndFarEvents)

@@ -13,6 +13,14 @@
 // The order is exactly that of (time, particle index): buckets are a monotone function of time,
 // so an earlier bucket holds only earlier events, and the front heap breaks ties by index. The
 // trajectory is therefore bit-for-bit the one of any other exact priority queue.
+//
+// With many buckets (WAIT_FROM and more: their heads then take 1 MiB and more, beyond this
+// machine's second-level cache) a link to a later bucket waits a few updates (WAIT of them, and
+// never beyond the moment the front empties, before the calendar moves on): the bucket's head
+// is asked for from the memory when the time is given and read when the link is made. That
+// head is then mostly a miss, and linking at once waited for it (bench/README.md). No waiting
+// event can be the next one: it lies in a later bucket than the front's, and the front moves on
+// only after every waiting link is made.
 #ifndef GRANFRIC_CORE_EVENT_QUEUE_H
 #define GRANFRIC_CORE_EVENT_QUEUE_H
 
@@ -55,12 +63,16 @@ class EventQueue {
     head.assign(nb, -1);
     overflow = -1;
     nbucketed = 0;
+    nwait = wfirst = 0;
+    waits = nb >= wait_from;
     cur = 0;
     for (Walk &k : walk) k = Walk{};
     for (int i = 0; i < n; i++) insert(i);
     settle();
   }
   bool empty() const { return node.empty(); }
+  // from how many buckets on links wait (WAIT_FROM; 0: always, for tests); at the next build()
+  void set_wait_from(int buckets) { wait_from = buckets; }
   // the particle with the earliest event (ties: the smallest index); with no finite event left,
   // some particle whose event time is infinite
   int top() const { return front.empty() ? overflow : front[0]; }
@@ -152,7 +164,8 @@ class EventQueue {
  private:
   static constexpr double INF = std::numeric_limits<double>::infinity();
   // where: slot of its bucket list (>= 0; the bucket is the one of the next nb with that
-  // slot), OVER (overflow list), or FRONT - k at position k of the front heap
+  // slot), nb + that slot while its link waits, OVER (overflow list), or FRONT - k at position
+  // k of the front heap
   static constexpr int NOWHERE = -1, OVER = -2, FRONT = -3;
   static constexpr int64_t BEYOND = -1;
   // a particle's event time, where it is, and its links in a bucket or the overflow list
@@ -179,6 +192,13 @@ class EventQueue {
     int p = -1;
   };
   Walk walk[AHEAD];
+  // the particles whose links wait, oldest first from wfirst (circular; -1: removed since)
+  static constexpr int WAIT = 8, WAIT_FROM = 1 << 18;
+  static_assert((WAIT & (WAIT - 1)) == 0, "WAIT is a power of 2");
+  int waiting[WAIT];
+  int wfirst = 0, nwait = 0;
+  int wait_from = WAIT_FROM;
+  bool waits = false;    // (nb >= wait_from)
 
   bool less(int a, int b) const
   {
@@ -220,10 +240,35 @@ class EventQueue {
       push_front(i);
     } else {
       const int s = (int) (b & (nb - 1));
+      nbucketed++;
+      if (!waits) {
+        node[i].where = s;
+        link(head[s], i);
+        return;
+      }
+      __builtin_prefetch(&head[s], 1);
+      if (nwait == WAIT) link_oldest();
+      node[i].where = nb + s;
+      waiting[(wfirst + nwait++) & (WAIT - 1)] = i;
+    }
+  }
+  // the oldest waiting link made (removed ones skipped)
+  void link_oldest()
+  {
+    while (nwait > 0) {
+      const int i = waiting[wfirst];
+      wfirst = (wfirst + 1) & (WAIT - 1);
+      nwait--;
+      if (i < 0) continue;
+      const int s = node[i].where - nb;
       node[i].where = s;
       link(head[s], i);
-      nbucketed++;
+      return;
     }
+  }
+  void link_waiting()
+  {
+    while (nwait > 0) link_oldest();
   }
   void push_front(int i)
   {
@@ -244,6 +289,10 @@ class EventQueue {
       }
     } else if (s == OVER) {
       unlink(overflow, i);
+    } else if (s >= nb) {
+      for (int k = 0; k < nwait; k++)
+        if (waiting[(wfirst + k) & (WAIT - 1)] == i) waiting[(wfirst + k) & (WAIT - 1)] = -1;
+      nbucketed--;
     } else {
       unlink(head[s], i);
       nbucketed--;
@@ -255,6 +304,7 @@ class EventQueue {
   void settle()
   {
     while (front.empty()) {
+      link_waiting();    // (before the calendar moves on)
       if (nbucketed == 0) {
         // nothing within the horizon: jump to the earliest finite overflow event
         double tmin = INF;
