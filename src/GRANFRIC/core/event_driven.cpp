@@ -445,7 +445,10 @@ void EventDriven::prefetch_upcoming()
     const int q = si.ekind == COLLISION ? si.cpartner : -1;
     u.q[s1][k] = q;
     prefetch_cold(i);
-    if (q >= 0) prefetch_partner(q);
+    if (q >= 0)
+      prefetch_partner(q);
+    else if (si.cpartner >= 0)    // (a crossing reads its candidate partner's tick: stale())
+      __builtin_prefetch(&C[si.cpartner].changed);
   }
   u.n[s0] = 0;
   queue.prefetch_ahead([this, &u, s0](int i) {
