@@ -13,19 +13,6 @@
 using namespace granfric;
 using namespace granfric_test;
 
-namespace {
-
-// the reference's system run in windows of dt up to T with a kick of every particle in each
-// window, prefetching from prefetch_bytes bytes of records
-CoreRun run_prefetching(const Reference &ref, int neighbours, long prefetch_bytes, double dt, double T)
-{
-  CoreRun run(ref, 1000000, neighbours, 0.0, true, prefetch_bytes);
-  run.run_turning(T, dt);
-  return run;
-}
-
-}    // namespace
-
 TEST(Prefetch, SameBitsAsWithout)
 {
   struct C {
@@ -43,8 +30,11 @@ TEST(Prefetch, SameBitsAsWithout)
     const double mft = mean_free_time(ref);
     ref.tc = 1e-3 * mft;
     SCOPED_TRACE("dim " + std::to_string(c.dim) + " phi " + std::to_string(c.phi));
-    const CoreRun without = run_prefetching(ref, c.neighbours, 1L << 40, 2.0 * mft, 12.0 * mft);
-    const CoreRun with = run_prefetching(ref, c.neighbours, 0, 2.0 * mft, 12.0 * mft);
+    // (windows of two mft, every velocity turned in the middle of each; prefetching from no
+    // system and from every one)
+    CoreRun without(ref, 1000000, c.neighbours, 0.0, true, 1L << 40), with(ref, 1000000, c.neighbours, 0.0, true, 0);
+    without.run_turning(12.0 * mft, 2.0 * mft);
+    with.run_turning(12.0 * mft, 2.0 * mft);
     ASSERT_GE(without.total.collisions, 4L * c.n);
     EXPECT_EQ(with.total.collisions, without.total.collisions);
     EXPECT_EQ(with.total.crossings, without.total.crossings);

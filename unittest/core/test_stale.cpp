@@ -14,19 +14,6 @@
 using namespace granfric;
 using namespace granfric_test;
 
-namespace {
-
-// the reference's system run in windows of dt up to T, every particle's velocity turned at the
-// middle of each window, the clock restarting past tick_last
-CoreRun run_ticking(const Reference &ref, int neighbours, uint32_t tick_last, double dt, double T)
-{
-  CoreRun run(ref, 1000000, neighbours, 0.0, true, EDOptions().prefetch_bytes, tick_last);
-  run.run_turning(T, dt);
-  return run;
-}
-
-}    // namespace
-
 TEST(StalePredictions, SameBitsWhenTheClockStartsAgain)
 {
   struct C {
@@ -51,8 +38,13 @@ TEST(StalePredictions, SameBitsWhenTheClockStartsAgain)
     const double mft = mean_free_time(ref);
     ref.tc = 1e-3 * mft;
     SCOPED_TRACE("dim " + std::to_string(c.dim) + " phi " + std::to_string(c.phi));
-    const CoreRun never = run_ticking(ref, c.neighbours, EDOptions().tick_last, 2.0 * mft, 16.0 * mft);
-    const CoreRun often = run_ticking(ref, c.neighbours, 37, 2.0 * mft, 16.0 * mft);
+    // (windows of two mft, every velocity turned in the middle of each; the clock restarting
+    // never, and every 37 changes)
+    const long pb = EDOptions().prefetch_bytes;
+    CoreRun never(ref, 1000000, c.neighbours, 0.0, true, pb, EDOptions().tick_last);
+    CoreRun often(ref, 1000000, c.neighbours, 0.0, true, pb, 37);
+    never.run_turning(16.0 * mft, 2.0 * mft);
+    often.run_turning(16.0 * mft, 2.0 * mft);
     ASSERT_GE(never.total.collisions, 4L * c.n);
     EXPECT_EQ(often.total.collisions, never.total.collisions);
     EXPECT_EQ(often.total.crossings, never.total.crossings);
