@@ -488,10 +488,10 @@ class EventDriven {
     if (tick >= opt.tick_last) retick();
     C[i].changed = ++tick;
   }
-  void turned(int i, int j)
+  void turned(int i, int j)    // (one change of both: the same tick)
   {
-    if (tick >= opt.tick_last) retick();
-    C[i].changed = C[j].changed = ++tick;
+    turned(i);
+    C[j].changed = tick;
   }
   void retick();    // the clock back to 1, every prediction as stale or fresh as it was
                     // (past EDOptions::tick_last)

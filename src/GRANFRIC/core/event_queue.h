@@ -290,8 +290,10 @@ class EventQueue {
     } else if (s == OVER) {
       unlink(overflow, i);
     } else if (s >= nb) {
-      for (int k = 0; k < nwait; k++)
-        if (waiting[(wfirst + k) & (WAIT - 1)] == i) waiting[(wfirst + k) & (WAIT - 1)] = -1;
+      for (int k = 0; k < nwait; k++) {
+        int &w = waiting[(wfirst + k) & (WAIT - 1)];
+        if (w == i) w = -1;
+      }
       nbucketed--;
     } else {
       unlink(head[s], i);
