@@ -382,13 +382,22 @@ void EventDriven::prefetch_around(int i, bool deep) const
   __builtin_prefetch(&H[i]);
   __builtin_prefetch(&img[i]);
   if (lists) {
-    // the lines of its list; not its neighbours' records: the entries name them directly, so
-    // a scan's loads of them do not wait on one another and the processor overlaps them
-    // (asking for them too was slower, bench/README.md)
-    if (deep) return;
     const Entry *e = &NB[(size_t) i * LCAP];
-    __builtin_prefetch(e);
-    __builtin_prefetch(e + 64 / sizeof(Entry));    // (the next cache line)
+    if (!deep) {
+      // its list centre and the lines of its list; not its neighbours' records: the entries
+      // name them directly, so a scan's loads of them do not wait on one another and the
+      // processor overlaps them (asking for them too was slower, bench/README.md)
+      __builtin_prefetch(&XW[i]);
+      __builtin_prefetch(e);
+      __builtin_prefetch(e + 64 / sizeof(Entry));    // (the next cache line)
+    } else if (S[i].ekind == CROSSING) {
+      // a list rebuild leaves its neighbours' lists (list_drop): the line of each reverse
+      // entry, and the neighbour's count
+      for (int m = 0; m < NN[i]; m++) {
+        __builtin_prefetch(&NB[(size_t) e[m].j * LCAP + e[m].r]);
+        __builtin_prefetch(&NN[e[m].j]);
+      }
+    }
     return;
   }
   // the cells around the one the particle is in, or, where its event is a crossing, the one
