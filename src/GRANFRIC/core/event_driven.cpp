@@ -384,13 +384,17 @@ void EventDriven::prefetch_around(int i, bool deep) const
   if (lists) {
     const Entry *e = &NB[(size_t) i * LCAP];
     if (!deep) {
-      // its list centre and the lines of its list; not its neighbours' records: the entries
-      // name them directly, so a scan's loads of them do not wait on one another and the
-      // processor overlaps them (asking for them too was slower, bench/README.md)
+      // its list centre and the lines of its list
       __builtin_prefetch(&XW[i]);
       __builtin_prefetch(e);
       __builtin_prefetch(e + 64 / sizeof(Entry));    // (the next cache line)
-    } else if (S[i].ekind == CROSSING) {
+    } else if (S[i].ekind != CROSSING) {
+      // the records of its first listed neighbours, which its scan's first lanes wait for;
+      // the loads of the later ones overlap with the work on those (asking for every
+      // neighbour's record was alike, bench/README.md)
+      const int first = NN[i] < PREFETCH_LISTED ? NN[i] : PREFETCH_LISTED;
+      for (int m = 0; m < first; m++) __builtin_prefetch(&H[e[m].j]);
+    } else {
       // a list rebuild leaves its neighbours' lists (list_drop): the line of each reverse
       // entry, and the neighbour's count
       for (int m = 0; m < NN[i]; m++) {

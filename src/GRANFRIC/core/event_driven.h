@@ -673,6 +673,7 @@ class EventDriven {
   void renumber(const std::vector<int> &order);
   void predict_all();                    // predict() for every particle, each pair once
   void prefetch_around(int i, bool deep) const;
+  static constexpr int PREFETCH_LISTED = 8;    // (two groups of the lanes)
   // what an event reads of i besides its hot record: its Cold record
   // (which may straddle two cache lines) and its time of the last collision (with the TC model)
   void prefetch_cold(int i) const
