@@ -440,16 +440,19 @@ void EventDriven::copy_keys()
 // before asked for. A particle met now: its schedule and hot record; one event later the lines
 // of the cell lists around it, and its collision partner's records; two events later the
 // records of its first candidates, and the cell lists around the partner; three events later
-// the partner's first candidates.
+// the partner's first candidates. The partner's cells and candidates only with neighbour
+// lists or in systems of PARTNERS_FAR times the size from which the loop prefetches: below,
+// they cost more than they save (bench/README.md).
 void EventDriven::prefetch_upcoming()
 {
   Upcoming &u = upcoming;
   const int s0 = u.turn & 3, s1 = (u.turn + 3) & 3, s2 = (u.turn + 2) & 3, s3 = (u.turn + 1) & 3;
-  for (int k = 0; k < u.n[s3]; k++)
-    if (u.q[s3][k] >= 0) prefetch_around(u.q[s3][k], true);
+  if (far_partners)
+    for (int k = 0; k < u.n[s3]; k++)
+      if (u.q[s3][k] >= 0) prefetch_around(u.q[s3][k], true);
   for (int k = 0; k < u.n[s2]; k++) {
     prefetch_around(u.p[s2][k], true);
-    if (u.q[s2][k] >= 0) prefetch_around(u.q[s2][k], false);
+    if (far_partners && u.q[s2][k] >= 0) prefetch_around(u.q[s2][k], false);
   }
   for (int k = 0; k < u.n[s1]; k++) {
     const int i = u.p[s1][k];
@@ -488,7 +491,9 @@ EDStats EventDriven::advance_to(double t_end)
   if (crossings_since_reorder > 4L * n) reorder();
   copy_keys();
   upcoming = Upcoming();    // (indices of an earlier numbering, maybe of more particles)
-  far = (long) memory_bytes() > opt.prefetch_bytes;
+  const long bytes = (long) memory_bytes();
+  far = bytes > opt.prefetch_bytes;
+  far_partners = far && (lists || bytes > PARTNERS_FAR * opt.prefetch_bytes);
   size_t g = 0;
   while (n > 0) {
     const int i = queue.top();
