@@ -703,7 +703,7 @@ class EventDriven {
   Upcoming upcoming;
   bool far = false;    // this window prefetches (its records exceed EDOptions::prefetch_bytes)
   bool far_partners = false;    // and asks for what the partners' scans read (prefetch_upcoming)
-  static constexpr long PARTNERS_FAR = 8;
+  static constexpr long PARTNERS_FAR = 8;    // (from this many times prefetch_bytes; lists: always)
   void prefetch_upcoming();
   void offer_both(int i, int j, int o0, int o1, int o2);
   // lazy state of internal particle i at window time t (inline: read for every candidate
