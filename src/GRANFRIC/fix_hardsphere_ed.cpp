@@ -152,7 +152,7 @@ FixHardsphereED *FixHardsphereED::lookup(LAMMPS *lmp, const std::string &id, con
 
 int FixHardsphereED::setmask()
 {
-  return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA | POST_FORCE | POST_FORCE_RESPA;
+  return INITIAL_INTEGRATE | INITIAL_INTEGRATE_RESPA | POST_FORCE | POST_FORCE_RESPA | PRE_NEIGHBOR;
 }
 
 void FixHardsphereED::request_atom_tallies()
@@ -248,6 +248,7 @@ void FixHardsphereED::init()
                  "hardsphere/wall (at least on one side)", "xyz"[d]);
   }
   check_walls_cross();
+  note_positions();
   if (comm->nprocs > 1 && parallel == GATHER && comm->me == 0)
     error->warning(FLERR,
                    "Fix hardsphere/ed parallel gather on {} MPI ranks: every rank processes the "
@@ -585,6 +586,41 @@ bool FixHardsphereED::state_holds(int i, double T0, const hardsphere::FarWrap &w
     xs[XS_OFF + d] = off;
   }
   return true;
+}
+
+void FixHardsphereED::note_positions()
+{
+  if (!xstate || written_at == epoch_time(update->ntimestep)) return;
+  const hardsphere::FarWrap wrap(domain);
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *wx = xstate[i] + XS_WX;
+    const double *x = atom->x[i];
+    bool same = !std::isnan(wx[0]);
+    for (int d = 0; d < 3 && same; d++) {
+      int k;
+      double c;
+      same = wrap.match(d, x[d], wx[d], k, c);
+    }
+    if (!same)
+      for (int d = 0; d < 3; d++) wx[d] = x[d];
+  }
+  written_at = NAN;
+}
+
+void FixHardsphereED::undo_rounding()
+{
+  if (!xstate) return;
+  const hardsphere::FarWrap wrap(domain);
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double *wx = xstate[i] + XS_WX;
+    double *x = atom->x[i];
+    if (std::isnan(wx[0])) continue;
+    for (int d = 0; d < 3; d++) {
+      int k;
+      double c;
+      if (x[d] != wx[d] && wrap.match(d, x[d], wx[d], k, c)) x[d] = c;
+    }
+  }
 }
 
 // the kicks of every fix hardsphere/kick in [t0, t0 + dt) in time order; the momentum shift of

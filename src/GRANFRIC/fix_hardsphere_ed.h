@@ -72,6 +72,8 @@ class FixHardsphereED : public Fix {
   void post_force(int) override;
   void post_force_respa(int, int, int) override;
   void setup(int) override;
+  void setup_pre_neighbor() override { undo_rounding(); }
+  void pre_neighbor() override { undo_rounding(); }
   void initial_integrate(int) override;
   void initial_integrate_respa(int, int, int) override;
   double compute_vector(int) override;
@@ -177,6 +179,14 @@ class FixHardsphereED : public Fix {
   // T0)? LAMMPS may have wrapped some into the box: their periods follow (state_holds: one atom)
   bool states_hold(int n, double T0, const hardsphere::FarWrap &wrap);
   bool state_holds(int i, double T0, const hardsphere::FarWrap &wrap);
+  // LAMMPS's balance and fix balance (shift) may round positions (FarWrap::match). Before
+  // each neighbour list, every atom moved only so is put back where it was (undo_rounding):
+  // where the last window wrote it, or, before the first window, where it was when the run
+  // (or the balance command) began (note_positions, kept in XS_WX; written_at then holds no
+  // time). So the positions a new epoch takes, and those of dumps and restart files, are the
+  // serial run's bits.
+  void note_positions();
+  void undo_rounding();
   class PairHardsphere *pair;
 
   granfric::EventDriven ed;

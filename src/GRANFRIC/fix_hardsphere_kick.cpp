@@ -23,7 +23,7 @@
 using namespace LAMMPS_NS;
 
 FixHardsphereKick::FixHardsphereKick(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), next_kick(0), started(false)
+    Fix(lmp, narg, arg), next_kick(0), kick_shift(0)
 {
   if (narg < 6) utils::missing_cmd_args(FLERR, "fix hardsphere/kick f_dr v_dr seed", error);
   double &fdr = law.fdr, &vdr = law.vdr, &spin = law.spin;
@@ -70,12 +70,9 @@ void FixHardsphereKick::init()
 {
   hardsphere::require_ed(lmp, style, id, "applies the kicks at their times inside each step");
   check_kicks_per_step();
-  // the first kick of a new run is the first kick time at or after the current time
-  if (!started) {
-    const double now = hardsphere::time_at_step(update, update->ntimestep);
-    next_kick = std::max(next_kick, (long) std::ceil(now * law.fdr - 1e-9));
-    started = true;
-  }
+  // the kicks follow the simulation time, through reset_timestep and restarts alike: the next
+  // kick of a run is the first kick time at or after the time the run starts
+  kick_shift = law.shift_at(hardsphere::time_at_step(update, update->ntimestep), next_kick, kick_shift);
 }
 
 // Every kick of a step is processed inside it, each over all atoms (brought to the kick time
@@ -109,7 +106,7 @@ double FixHardsphereKick::compute_scalar()
 void FixHardsphereKick::kicks_in(double t0, double t1, std::vector<double> &times,
                                  std::vector<long> &index)
 {
-  law.kicks_in(t0, t1, next_kick, times, index);
+  law.kicks_in(t0, t1, next_kick, times, index, kick_shift);
 }
 
 // the core's momentum sums over this rank's atoms of the group, summed over the ranks (the same
@@ -137,20 +134,28 @@ void FixHardsphereKick::apply(granfric::EventDriven &ed, const std::vector<tagin
     if (mask[e] & groupbit) law.apply(ed.particle(e), (long) tag[e], k, dim, dvcm);
 }
 
+// (a negative first value marks the format: files of earlier versions hold next_kick alone)
 void FixHardsphereKick::write_restart(FILE *fp)
 {
   if (comm->me == 0) {
-    int size = sizeof(double);
-    double v = (double) next_kick;
+    const double v[3] = {-1.0, (double) next_kick, (double) kick_shift};
+    int size = sizeof(v);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(&v, sizeof(double), 1, fp);
+    fwrite(v, sizeof(double), 3, fp);
   }
 }
 
 void FixHardsphereKick::restart(char *buf)
 {
-  double v;
-  memcpy(&v, buf, sizeof(double));
-  next_kick = (long) v;
-  started = true;
+  double v[3];
+  memcpy(v, buf, sizeof(double));
+  if (v[0] >= 0.0) {
+    next_kick = (long) v[0];
+    kick_shift = 0;
+  } else {
+    memcpy(v, buf, sizeof(v));
+    next_kick = (long) v[1];
+    kick_shift = (long) v[2];
+  }
+  // (init checks both against the time)
 }

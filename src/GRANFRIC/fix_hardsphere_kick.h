@@ -7,8 +7,8 @@
    of the group gets an independent Gaussian velocity increment of standard deviation v_dr per
    translational component. The kicks happen at their exact times inside the event-driven step
    of fix hardsphere/ed, which calls this fix. The kicks themselves are the core's (core/kicks.h);
-   this fix holds their parameters, the next kick's index (kept in restart files) and the sum of
-   the momentum shift over the ranks.
+   this fix holds their parameters, the next kick's index and the shift of the kick times (kept
+   in restart files) and the sum of the momentum shift over the ranks.
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -54,8 +54,8 @@ class FixHardsphereKick : public Fix, public HardsphereDriving {
 
  private:
   granfric::Kicks law;  // f_dr, v_dr, seed, momentum, spin
-  long next_kick;      // index of the next kick (restart)
-  bool started;
+  long next_kick;      // index of the next kick: the kicks so far (restart)
+  long kick_shift;     // kick k happens at time (k - kick_shift) / f_dr (restart)
   void check_kicks_per_step() const;
 };
 

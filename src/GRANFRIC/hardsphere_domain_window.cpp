@@ -715,12 +715,15 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o)
 {
   order_by_id();
   const Region &R = reg[comm->me];
+  // (a rank that owns no atoms has no region and receives no copies: its empty core still
+  // runs the window, for the kicks every rank draws, on a grid of the box)
+  const bool empty = nlocal == 0;
   cslot.clear();
   for (int d = 0; d < 3; d++) {
     grid_whole[d] = R.whole[d];
     if (R.whole[d] || !domain->periodicity[d]) continue;
-    grid_lo[d] = R.lo[d] - W;
-    grid_hi[d] = R.hi[d] + W;
+    grid_lo[d] = empty ? domain->boxlo[d] : R.lo[d] - W;
+    grid_hi[d] = empty ? domain->boxhi[d] : R.hi[d] + W;
     o.lo[d] = grid_lo[d];
     o.hi[d] = grid_hi[d];
     o.periodic[d] = false;

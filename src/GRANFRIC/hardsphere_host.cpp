@@ -54,6 +54,8 @@ namespace hardsphere {
       boxlo[d] = domain->boxlo[d];
       L[d] = domain->prd[d];
       periodic[d] = p;
+      tol[d] = 16.0 * std::numeric_limits<double>::epsilon() *
+          (std::fabs(domain->boxlo[d]) + std::fabs(domain->boxhi[d]));
     }
   }
 

@@ -66,24 +66,39 @@ namespace hardsphere {
       return y;
     }
     // does LAMMPS's coordinate b hold what a window wrote (w), or that wrapped by one period
-    // as LAMMPS wraps atoms into the box (off follows)?
+    // as LAMMPS wraps atoms into the box (off follows)? Up to rounding: see match().
     bool holds(int d, double b, double w, int &off) const
     {
       if (b == w) return true;
-      if (!periodic[d]) return false;
-      if (b == w + L[d]) {
-        off--;
-        return true;
-      }
-      if (b == std::max(w - L[d], boxlo[d])) {
-        off++;
-        return true;
-      }
+      int k;
+      double c;
+      if (!match(d, b, w, k, c)) return false;
+      off += k;
+      return true;
+    }
+    // the coordinate c that LAMMPS's b stands for: w, or w wrapped by one period as
+    // Domain::pbc() wraps it (k = -1: w + L; k = 1: w - L, at least the box's lower edge), the
+    // same bits or up to rounding. LAMMPS's balance and fix balance (shift) take every position
+    // to the box's fractional coordinates and back, which may move it by a few units in the
+    // last place of the box's extent (tol). False if b is none of them.
+    bool match(int d, double b, double w, int &k, double &c) const
+    {
+      const int ks[3] = {0, -1, 1};
+      const double cs[3] = {w, w + L[d], std::max(w - L[d], boxlo[d])};
+      const int n = periodic[d] ? 3 : 1;
+      for (int pass = 0; pass < 2; pass++)
+        for (int m = 0; m < n; m++)
+          if (pass == 0 ? b == cs[m] : std::fabs(b - cs[m]) <= tol[d]) {
+            k = ks[m];
+            c = cs[m];
+            return true;
+          }
       return false;
     }
 
    private:
     double lo[3], hi[3], boxlo[3], L[3];
+    double tol[3];    // rounding of a coordinate through the box's fractional coordinates
     bool periodic[3];
   };
 

@@ -51,8 +51,9 @@ constexpr const char *GHOST_VELOCITY = "comm_modify vel yes";
 #define GRANFRIC_MAXEXCHANGE(n) maxexchange = (n)
 // a fix that is a copy of another (LAMMPS's Kokkos styles; none under LIGGGHTS)
 #define GRANFRIC_COPYMODE copymode
-// does fix f change the box?
-inline bool changes_box(const Fix *f) { return f->box_change != 0; }
+// does fix f change the box (its size or shape)? Moving the subdomains' boundaries (fix
+// balance) does not change it: the windows follow the atoms, wherever their ranks are.
+inline bool changes_box(const Fix *f) { return (f->box_change & ~Fix::BOX_CHANGE_DOMAIN) != 0; }
 // a pair style's per-step set-up of energy and virial tallies, its cut-off flags, its mixing
 #define GRANFRIC_EV_INIT(eflag, vflag) ev_init(eflag, vflag)
 #define GRANFRIC_PAIR_FLAGS finitecutflag = 1
@@ -69,7 +70,7 @@ std::string format(const char *f, const A &...a)
 #define GRANFRIC_COPYMODE 0
 inline bool changes_box(const Fix *f)
 {
-  return f->box_change_size || f->box_change_shape || f->box_change_domain;
+  return f->box_change_size || f->box_change_shape;
 }
 #define GRANFRIC_EV_INIT(eflag, vflag) \
   do {                                 \

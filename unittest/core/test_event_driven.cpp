@@ -6,6 +6,7 @@
 #include "ed_fixture.h"
 
 #include "core/id_map.h"
+#include "core/kicks.h"
 
 #include <gtest/gtest.h>
 
@@ -508,6 +509,45 @@ TEST(EventDriven, GlobalKicksEqualReference)
     for (const auto &p : start.p) e0 += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
     for (const auto &p : ref.p) e1 += 0.5 * p.m * (norm2(p.v) + p.q * p.a * p.a * norm2(p.w));
     EXPECT_NEAR(injected + run.total.dE, e1 - e0, 1e-10 * e0);
+  }
+}
+
+// The kick schedule follows the simulation time: a run that continues where windows of the last
+// one left keeps its shift (whatever the rounding of the window ends), a time moved back or
+// forward makes the next kick the first on the grid k / f_dr at or after it; the kick indices
+// (the random numbers) go on without repeating
+TEST(Kicks, ScheduleFollowsTheTime)
+{
+  for (double fdr : {5.0, 3.0, 0.7}) {
+    Kicks law;
+    law.fdr = fdr;
+    long next = 0, shift = law.shift_at(0.0, 0, 0);
+    EXPECT_EQ(shift, 0);
+    const double dt = 0.31;    // (no kick at the end of the last window: no tie to round)
+    double t0 = 0.0;
+    std::vector<double> times;
+    std::vector<long> index;
+    for (int w = 0; w < 30; w++, t0 += dt) law.kicks_in(t0, t0 + dt, next, times, index, shift);
+    const long done = next;
+    EXPECT_EQ(done, (long) std::ceil(30 * dt * fdr - 1e-9)) << fdr;
+    // continued: the end of the last window, summed or multiplied, keeps the shift
+    EXPECT_EQ(law.shift_at(t0, done, 0), 0) << fdr;
+    EXPECT_EQ(law.shift_at(30 * dt, done, 0), 0) << fdr;
+    // a counter one kick off does not fit the time: the next kick is the first at or after it
+    EXPECT_EQ(law.shift_at(t0, done + 1, 0), 1) << fdr;
+    EXPECT_EQ(law.shift_at(t0, done - 1, 0), -1) << fdr;
+    // moved back to 0: kick `done` comes at 0; forward to 500: at the first grid time >= 500
+    EXPECT_EQ(law.shift_at(0.0, done, 0), done) << fdr;
+    shift = law.shift_at(500.0, done, 0);
+    EXPECT_LT((done - 1 - shift) / fdr, 500.0) << fdr;
+    EXPECT_GE((done - shift) / fdr, 500.0) << fdr;
+    times.clear();
+    index.clear();
+    next = done;
+    law.kicks_in(500.0, 510.0, next, times, index, shift);
+    ASSERT_EQ((long) times.size(), (long) std::ceil(510.0 * fdr) - (long) std::ceil(500.0 * fdr)) << fdr;
+    EXPECT_EQ(index.front(), done) << fdr;
+    EXPECT_NEAR(times.front(), std::ceil(500.0 * fdr) / fdr, 1e-9) << fdr;
   }
 }
 

@@ -705,6 +705,45 @@ TEST(FixHardsphereKick, HeatingRateMomentumAndEnergyBooks)
   EXPECT_NEAR(ed->compute_vector(8) - ed->compute_vector(2), E, 1e-9 * E);
 }
 
+// The kicks follow the simulation time through reset_timestep: after a reset to time 0 they go
+// on at once (9 kicks in 9 time units, as in the first run, with new random numbers: as much
+// energy again, not the replay of the first run's increments), and a jump to time 500 gives the
+// 3 kicks of the next 3 time units, not the 494 between the old time and the new; a restart
+// file keeps the schedule
+TEST(FixHardsphereKick, ScheduleFollowsResetTimestep)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n"
+                 "lattice sq 0.0637\nregion box block 0 20 0 20 -0.5 0.5\ncreate_box 1 box\n"
+                 "create_atoms 1 box\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
+                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
+                 "fix ed all hardsphere/ed\nfix k all hardsphere/kick 1.0 0.05 4711\n"
+                 "timestep 0.3\nrun 30 post no");
+  auto *k = lmp->modify->get_fix_by_id("k");
+  auto *ed = lmp->modify->get_fix_by_id("ed");
+  EXPECT_EQ(k->compute_scalar(), 9.0);
+  const double e1 = ed->compute_vector(8);
+  ASSERT_GT(e1, 0.0);
+  run(lmp.get(), "reset_timestep 0\nrun 30 post no");
+  EXPECT_EQ(k->compute_scalar(), 18.0);
+  const double e2 = ed->compute_vector(8);
+  EXPECT_NEAR((e2 - e1) / e1, 1.0, 0.3);
+  run(lmp.get(), "reset_timestep 1000 time 500.0\nrun 10 post no");
+  EXPECT_EQ(k->compute_scalar(), 21.0);
+  const double e3 = ed->compute_vector(8) - e2;
+  EXPECT_GT(e3 / e1, 0.1);
+  EXPECT_LT(e3 / e1, 0.7);
+  // a restart file written now continues with the kicks at 503, 504, 505
+  const std::string rst = "granfric_test_kick_" + std::to_string(::getpid()) + ".restart";
+  run(lmp.get(), "write_restart " + rst);
+  lmp.reset();    // one LAMMPS instance at a time: a plugin is registered with one instance only
+  auto b = make_lammps();
+  run(b.get(), "read_restart " + rst + "\ncomm_modify vel yes\nfix ed all hardsphere/ed\n"
+               "fix k all hardsphere/kick 1.0 0.05 4711\ntimestep 0.3\nrun 10 post no");
+  std::remove(rst.c_str());
+  EXPECT_EQ(b->modify->get_fix_by_id("k")->compute_scalar(), 24.0);
+}
+
 // total energy of the system: kinetic (translation and rotation) plus potential m |g| y
 double total_energy(LAMMPS_NS::LAMMPS *lmp, double g)
 {

@@ -113,11 +113,11 @@ BITWISE = {"dilute": dict(steps=420, r=1.0, rt=-1.0),
            "driven": dict(steps=200), "vibrated": dict(steps=1000)}
 
 
-def identical(w, a, b):
+def identical(w, a, b, least=100):
     """IDs of the atoms whose lines differ in dumps a and b (x, v, omega written with %.17g)"""
     with open(os.path.join(w, a)) as fa, open(os.path.join(w, b)) as fb:
         sa, sb = fa.read().splitlines()[9:], fb.read().splitlines()[9:]
-    assert len(sa) == len(sb) > 100
+    assert len(sa) == len(sb) > least
     return [x.split()[0] for x, y in zip(sa, sb) if x != y]
 
 
@@ -330,3 +330,63 @@ def test_restart_after_kill_continues_bit_for_bit(tmp_path, scene, np_, parallel
     assert len(sa) > 100
     differ = [x.split()[0] for x, y in zip(sa, sb) if x != y]
     assert not differ, f"{len(differ)} atoms differ at step 40, the first IDs {differ[:5]}"
+
+
+# Inhomogeneous scenes, in which ranks own no atoms (at the start, or from some step on), on 2,
+# 3 and 4 ranks, unbalanced and balanced (balance before the run and fix balance every 5 steps,
+# shift or rcb with comm_style tiled): the serial bits.
+# - half: the atoms fill x < 19 of a 40-wide periodic box; LAMMPS splits it along x, so on 2
+#   and 4 ranks the ranks right of x = 20 start empty (balancing moves the boundaries into
+#   the gas); kicks, the Walton law.
+# - settle: a 3d bed falls onto its floor under gravity (TC model, walls); LAMMPS splits the
+#   40-high box along z, and the upper subdomains empty during the run (checked below on the
+#   serial state: every atom ends below z = 10, the lowest of 4 layers).
+# - lone: 3 atoms on up to 4 ranks, one of them fast and alone: every step it leaves a rank,
+#   which then owns nothing, within one window.
+EMPTY = {"half": dict(steps=100), "settle": dict(steps=150, bdims="z"), "lone": dict(steps=30)}
+
+
+@pytest.mark.parametrize("balance", ["none", "shift", "rcb"])
+@pytest.mark.parametrize("scene", list(EMPTY))
+def test_empty_subdomains_equal_serial_bit_for_bit(tmp_path, scene, balance):
+    w = str(tmp_path)
+    lmp(w, 1, scene=scene, steps=0, out="s0", restart_out="init")
+    var = dict(EMPTY[scene], scene=scene, restart_in="init")
+    lmp(w, 1, out="s1", log="log1", **var)
+    a = np.loadtxt(os.path.join(w, "s1"), skiprows=9, ndmin=2)
+    if scene == "settle":
+        assert a[:, 3].max() < 10.0, "the bed did not settle below the lowest subdomain boundary"
+    if scene == "half":
+        assert a[:, 1].max() > 20.0, "the gas did not spread into the empty half"
+    least = 2 if scene == "lone" else 100
+    for n in (2, 3, 4):
+        lmp(w, n, out=f"s{n}", log=f"log{n}", balance=balance, **var)
+        d = lammpslog.read_thermo(os.path.join(w, f"log{n}"))
+        assert d["f_ed[12]"][-1] == var["steps"], f"{n} ranks: a window was redone gathered"
+        differ = identical(w, "s1", f"s{n}", least)
+        assert not differ, f"{n} ranks: {len(differ)} atoms differ, the first IDs {differ[:5]}"
+
+
+@pytest.mark.parametrize("scene", ["half", "settle"])
+def test_empty_subdomains_gathered_equal_serial(tmp_path, scene):
+    """parallel gather, in which every rank runs the whole system, with ranks that own nothing"""
+    w = str(tmp_path)
+    lmp(w, 1, scene=scene, steps=0, out="s0", restart_out="init")
+    var = dict(EMPTY[scene], scene=scene, restart_in="init")
+    lmp(w, 1, out="s1", **var)
+    lmp(w, 4, out="s4", parallel="gather", **var)
+    differ = identical(w, "s1", "s4")
+    assert not differ, f"4 ranks: {len(differ)} atoms differ, the first IDs {differ[:5]}"
+
+
+def test_balanced_run_restarted_on_other_rank_counts(tmp_path):
+    """The settling bed balanced by shift on 2 ranks, written to a restart file at step 60 and
+    continued on 3 ranks balanced by rcb: the serial state at step 120, bit for bit."""
+    w = str(tmp_path)
+    lmp(w, 1, scene="settle", steps=0, out="s0", restart_out="init")
+    common = dict(scene="settle", restart_every=60, bdims="z")
+    lmp(w, 1, steps=120, restart_in="init", out="straight", **common)
+    lmp(w, 2, steps=60, restart_in="init", out="half", balance="shift", **common)
+    lmp(w, 3, steps=60, restart_in="rst60", out="continued", balance="rcb", **common)
+    differ = identical(w, "straight", "continued")
+    assert not differ, f"{len(differ)} atoms differ at step 120, the first IDs {differ[:5]}"

@@ -25,13 +25,23 @@ double Kicks::gaussian(long seed, long tag, long k, int n)
 }
 
 void Kicks::kicks_in(double t0, double t1, long &next, std::vector<double> &times,
-                     std::vector<long> &index) const
+                     std::vector<long> &index, long shift) const
 {
-  while (next / fdr < t1) {
-    times.push_back(std::max(next / fdr, t0));
+  while ((next - shift) / fdr < t1) {
+    times.push_back(std::max((next - shift) / fdr, t0));
     index.push_back(next);
     next++;
   }
+}
+
+long Kicks::shift_at(double t, long next, long shift) const
+{
+  const double eps = 1e-9 * (std::fabs(t) + 1.0 / fdr);
+  if ((next - 1 - shift) / fdr < t + eps && (next - shift) / fdr >= t - eps) return shift;
+  long k = (long) std::ceil(t * fdr);    // (the first grid index at or after t)
+  while ((k - 1) / fdr >= t) k--;
+  while (k / fdr < t) k++;
+  return next - k;
 }
 
 // Gaussians from Box-Muller with 53-bit uniforms stay below 9 in magnitude

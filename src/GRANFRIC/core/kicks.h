@@ -31,10 +31,17 @@ struct Kicks {
   // at kick k
   static double gaussian(long seed, long tag, long k, int n);
 
-  // the kicks with k / f_dr in [t0, t1) from kick `next` on: their times (never before t0) and
-  // indices appended; next moves past them
+  // the kicks with (k - shift) / f_dr in [t0, t1) from kick `next` on: their times (never
+  // before t0) and indices appended; next moves past them. Kick k (its random numbers) happens
+  // at time (k - shift) / f_dr.
   void kicks_in(double t0, double t1, long &next, std::vector<double> &times,
-                std::vector<long> &index) const;
+                std::vector<long> &index, long shift = 0) const;
+  // The shift for a run that starts at time t with kick `next` to come: `shift` if kick
+  // next - 1 came before t and kick next does not (up to the rounding of t: the windows of a
+  // run that went on to t left it so), else the shift that makes kick next the first on the
+  // grid k / f_dr at or after t (the time was moved, e.g. by LAMMPS's reset_timestep). The
+  // kicks keep their rate and times on that grid, and no kick's random numbers come twice.
+  long shift_at(double t, long next, long shift) const;
 
   // The momentum shift of kick k as partial sums: a caller adds every driven particle it holds
   // (add), sums the four counts over all its parts (ranks), and takes the shift (shift). The
