@@ -390,3 +390,89 @@ def test_balanced_run_restarted_on_other_rank_counts(tmp_path):
     lmp(w, 3, steps=60, restart_in="rst60", out="continued", balance="rcb", **common)
     differ = identical(w, "straight", "continued")
     assert not differ, f"{len(differ)} atoms differ at step 120, the first IDs {differ[:5]}"
+
+
+# Every example scene of examples/ with dynamics, its input as a user runs it (shortened by its
+# own variables), serially and on 2-4 ranks, unbalanced and balanced (balance before the first
+# run and fix balance every 10 steps, shift or rcb with comm_style tiled): the same final
+# positions, velocities and spins, bit for bit. The test copies the example's directory and puts
+# the balancing commands before the input's first run command and a dump of the final state at
+# its end. LAMMPS's velocity command (create, scale) sums the momentum and the temperature over
+# the ranks, which rounds otherwise on each rank count: the serial run writes the atoms with
+# %.17g before its pair style is set (after the atoms are made) and after every velocity command
+# after the first run, and the runs on several ranks read them there with read_dump.
+EXAMPLE_SCENES = [
+    ("cooling", "in.cooling2d", {"nside": 32, "tend": 40}),
+    ("cooling", "in.cooling3d", {"nside": 10, "tend": 40}),
+    ("driven", "in.driven", {"nside": 24, "tend": 20}),
+    ("compaction", "in.compaction", {"tend": 400}),
+    ("convection", "in.convection", {"periods": 100}),
+    ("eos", "in.eos", {"dim": 2, "ncell": 3, "neq": 5, "nrun": 10}),
+    ("eos", "in.eos", {"dim": 3, "ncell": 3, "neq": 5, "nrun": 10}),
+]
+EXAMPLE_RANKS = [(1, "none"), (2, "none"), (4, "none"), (3, "shift"), (4, "rcb")]
+
+
+def example_copy(work, directory, script, n, balance, three_d):
+    """The example's directory copied for a run on n ranks, with in.ranks: its input with the
+    balancing commands, the serial velocities and the final dump (see above)."""
+    import shutil
+    src = os.path.join(ROOT, "examples", directory)
+    dst = os.path.join(work, f"{directory}.{n}.{balance}")
+    shutil.copytree(src, dst, ignore=shutil.ignore_patterns("log.*", "*.png"))
+    with open(os.path.join(src, script)) as f:
+        lines = f.read().splitlines()
+    dims = "xyz" if three_d else "xy"
+    fields = "x y z vx vy vz" if three_d else "x y vx vy"
+
+    def state(k):
+        if n == 1:
+            return [f"write_dump all custom ../state{k}.dump id x y z vx vy vz modify sort id "
+                    "format float %.17g"]
+        return [f"read_dump ../state{k}.dump $(step) {fields} box no format native"]
+    first = next(k for k, l in enumerate(lines) if l.split()[:1] == ["run"])
+    made = next(k for k, l in enumerate(lines) if "pair_style" in l.split("#")[0])
+    out = []
+    for k, line in enumerate(lines):
+        if k == made:
+            out += state(0)
+        if k == first:
+            out += {"none": [],
+                    "shift": [f"balance 1.0 shift {dims} 10 1.05",
+                              f"fix bal all balance 10 1.0 shift {dims} 10 1.05"],
+                    "rcb": ["comm_style tiled", "balance 1.0 rcb", "fix bal all balance 10 1.0 rcb"]}[balance]
+        out.append(line)
+        if k > first and line.split()[:1] == ["velocity"]:
+            out += state(k)
+    out.append("write_dump all custom final.txt id x y z vx vy vz omegax omegay omegaz "
+               "modify sort id format float %.17g")
+    with open(os.path.join(dst, "in.ranks"), "w") as f:
+        f.write("\n".join(out) + "\n")
+    return dst
+
+
+@pytest.mark.parametrize("directory,script,var", EXAMPLE_SCENES,
+                         ids=[f"{s[1][3:]}{s[2].get('dim', '')}" for s in EXAMPLE_SCENES])
+def test_examples_on_1_to_4_ranks_balanced_equal_serial(tmp_path, directory, script, var):
+    w = str(tmp_path)
+    three_d = script == "in.cooling3d" or var.get("dim") == 3
+    finals = {}
+    for n, balance in EXAMPLE_RANKS:
+        d = example_copy(w, directory, script, n, balance, three_d)
+        cmd = [LMP] + (["-np", str(n)] if n > 1 else []) + ["-in", "in.ranks", "-screen", "none",
+                                                              "-log", "log.ranks"]
+        for k, v in var.items():
+            cmd += ["-var", k, str(v)]
+        p = subprocess.run(cmd, cwd=d, capture_output=True, text=True)
+        if p.returncode != 0:
+            with open(os.path.join(d, "log.ranks")) as f:
+                errors = [l for l in f if "ERROR" in l]
+            pytest.fail(f"{n} ranks, {balance}: {errors or p.stderr[-2000:]}")
+        with open(os.path.join(d, "final.txt")) as f:
+            finals[(n, balance)] = f.read().splitlines()[9:]
+    serial = finals[(1, "none")]
+    assert len(serial) > 100
+    for key, rows in finals.items():
+        differ = [a.split()[0] for a, b in zip(serial, rows) if a != b]
+        assert len(rows) == len(serial) and not differ, \
+            f"{key}: {len(differ)} atoms differ from the serial run, the first IDs {differ[:5]}"
