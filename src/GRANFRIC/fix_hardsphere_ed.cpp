@@ -113,7 +113,9 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) :
   // times, kept only for the TC model, and the tallies, allocated when first asked for
   atom->add_callback(host::GROW);
   if (tc > 0.0) atom->add_callback(host::RESTART);
-  if (parallel == DOMAIN && comm->nprocs > 1) memory->create(xstate, 1, XS_SIZE, "hardsphere/ed:xstate");
+  // (the stored states, on several ranks: for domain windows, and for undo_rounding in both
+  // modes)
+  if (comm->nprocs > 1) memory->create(xstate, 1, XS_SIZE, "hardsphere/ed:xstate");
   FixHardsphereED::grow_arrays(atom->nmax);
   GRANFRIC_MAXEXCHANGE((tlast ? 1 : 0) + (xstate ? XS_SIZE : 0));
 }
@@ -205,12 +207,13 @@ void FixHardsphereED::init()
   if (!(update->dt > 0.0))
     error->all(FLERR, "Fix hardsphere/ed requires a positive timestep (timestep = {}): the step "
                "is the window in which the atoms move forward", update->dt);
-  // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), but
-  // no fix may change the box (deform, barostats)
+  // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), and
+  // fix balance may move the subdomains, but no fix may change the box (deform, barostats)
   for (const auto &f : host::fixes(modify))
     if (host::changes_box(f))
-      error->all(FLERR, "Fix hardsphere/ed does not support a box changed during the run (fix {} "
-                 "{})", f->id, f->style);
+      error->all(FLERR, "Fix hardsphere/ed does not support a box whose size or shape changes "
+                 "during the run (fix {} {}): the hard-sphere windows need a fixed box (fix "
+                 "balance, which moves only the subdomain boundaries, is supported)", f->id, f->style);
   // with run_style respa the window is the outermost step (collisions need no forces)
   nlevels_respa = 0;
   if (utils::strmatch(update->integrate_style, "^respa"))
@@ -266,6 +269,7 @@ void FixHardsphereED::setup(int vflag)
     error->all(FLERR, "Fix hardsphere/ed requires every atom to have a radius > 0 (atom {} has "
                "diameter {})", point, 2.0 * atom_value(point, [&](int i) { return radius[i]; }));
   check_box_fits_atoms();
+  check_plane();
   check_atoms_between_walls();
   // A new run may bring new coefficients, a new box, new walls or new atoms. The epoch (and the
   // event queue) of the last run goes on only if the core's configuration is the same in every
@@ -286,6 +290,7 @@ void FixHardsphereED::setup(int vflag)
   run_laws = laws;
   run_ntypes = atom->ntypes;
   check_overlaps = true;    // (a kept queue continues an exact trajectory: nothing to check)
+  added_at = -1;
 }
 
 // the lowest ID of the atoms (over all ranks) for which bad(local index) holds, or NOATOM
@@ -306,6 +311,28 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
     if (atom->tag[i] == who) v = value(i);
   MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, world);
   return v;
+}
+
+// In 2d the core moves discs in the plane z = 0 and spins them about z: an atom off that plane
+// (set ... z, fix deposit or pour with a region of some thickness in z), moving in z or
+// spinning about x or y would collide as a sphere in 3d. Checked at every run's start and when
+// the number of atoms changed (atoms added during the run).
+void FixHardsphereED::check_plane()
+{
+  plane_checked = atom->natoms;
+  if (domain->dimension != 2) return;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  const tagint who = first_atom([&](int i) {
+    return x[i][2] != 0.0 || v[i][2] != 0.0 || omega[i][0] != 0.0 || omega[i][1] != 0.0;
+  });
+  if (who == NOATOM) return;
+  double at[4];    // (z, vz, omega_x, omega_y of atom who)
+  for (int d = 0; d < 4; d++)
+    at[d] = atom_value(who, [&](int i) { return d == 0 ? x[i][2] : d == 1 ? v[i][2] : omega[i][d - 2]; });
+  error->all(FLERR, "Fix hardsphere/ed: atom {} is not a disc in the plane of the 2d simulation "
+             "(z = {}, vz = {}, omega = ({}, {}, .)): every atom must lie at z = 0 with vz = 0 "
+             "and spin about z only (the set and velocity commands set them; fix deposit and "
+             "fix pour need a region with z from 0 to 0 in 2d)", who, at[0], at[1], at[2], at[3]);
 }
 
 // a lower wall at or above an upper wall of the same dimension leaves no room between them
@@ -386,20 +413,22 @@ void FixHardsphereED::report_overlaps(bool partial)
     kj = keys[1];
   }    // (the keys are the atom IDs)
   if (n == 0) return;
+  const std::string when = added_at < 0 ? std::string("at the start of the run")
+                                        : host::format("after atoms were added at step {}", added_at);
   if (!allow_overlap) {
     invalidate_windows();
     error->all(FLERR,
-               "Fix hardsphere/ed: atoms {} and {} overlap by {:.6g} at the start of the run ({} "
-               "overlapping pairs in all). Remove them with delete_atoms overlap, create atoms with "
-               "create_atoms ... overlap, or let overlapping pairs separate with keyword overlap "
-               "allow", ki, kj, out.depth, (long) n);
+               "Fix hardsphere/ed: atoms {} and {} overlap by {:.6g} {} ({} overlapping pairs in "
+               "all). Remove them with delete_atoms overlap, create atoms with create_atoms ... "
+               "overlap (or fix deposit ... near), or let overlapping pairs separate with keyword "
+               "overlap allow", ki, kj, out.depth, when, (long) n);
   }
   if (comm->me == 0)
     error->warning(FLERR,
-                   "Fix hardsphere/ed: {} pairs of atoms overlap at the start of the run (deepest: "
-                   "atoms {} and {} by {:.6g}); approaching overlapping pairs collide at once, "
-                   "receding ones separate (overlap allow)",
-                   (long) n, ki, kj, out.depth);
+                   "Fix hardsphere/ed: {} pairs of atoms overlap {} (deepest: atoms {} and {} by "
+                   "{:.6g}); approaching overlapping pairs collide at once, receding ones separate "
+                   "(overlap allow)",
+                   (long) n, when, ki, kj, out.depth);
 }
 
 void FixHardsphereED::request_gamma_bins(int nbins)
@@ -701,6 +730,13 @@ void FixHardsphereED::initial_integrate(int vflag)
   const double t0 = window_start_time();
   totals[STEP_CONFLICTS] = totals[STEP_COMM] = totals[STEP_PREDICTED] = totals[STEP_COPIES] = 0.0;
   if (resync) resync_for_restart();
+  if (atom->natoms != plane_checked) {
+    // atoms added or deleted during the run (fix deposit, fix pour, fix evaporate): the new
+    // ones must lie in the plane, and must not overlap others
+    check_plane();
+    check_overlaps = true;
+    added_at = update->ntimestep - 1;    // (this window starts where that step ended)
+  }
   if (parallel == DOMAIN && comm->nprocs > 1) {
     // the reach widens after a guard failed (kicks or walls made atoms faster than the bound)
     // and narrows slowly while windows pass; the same on every rank (the shells of the ranks

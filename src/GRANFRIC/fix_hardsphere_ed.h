@@ -160,10 +160,10 @@ class FixHardsphereED : public Fix {
   bool epoch_starts() const;             // must the next window start a new epoch?
   void begin_epoch(double t0);           // a new epoch at this window (absolute start t0)
   double epoch_time(bigint step) const { return (double) (step - epoch_step) * epoch_dt; }
-  // Per atom, for windows on several ranks (parallel domain): the atom's stored state as the
+  // Per atom, on several ranks (both parallel modes): the atom's stored state as the
   // core that last owned it left it (AtomRecord), so that it goes with the atom to another rank
   // and a window built afresh (a gathered redo, a new cell grid) continues it exactly.
-  // XS_WX, XS_WV: the x and v the last domain window wrote into LAMMPS's arrays, as they were
+  // XS_WX, XS_WV: the x and v the last window wrote into LAMMPS's arrays, as they were
   // written (NaN: not written with this state), so that the next window sees that nothing
   // else changed the atom without flying its stored state forward again.
   enum { XS_X = 0, XS_V = 3, XS_T = 6, XS_OFF = 7, XS_PARTNER = 10, XS_POFF = 11, XS_TLAST = 14,
@@ -240,6 +240,9 @@ class FixHardsphereED : public Fix {
   void check_walls_cross() const;
   void check_box_fits_atoms() const;
   void check_atoms_between_walls() const;
+  void check_plane();                      // (2d: every atom at z = 0, vz = 0, spin about z)
+  bigint plane_checked = -1;               // the number of atoms the last check_plane saw
+  bigint added_at = -1;                    // the step atoms were added in this run (-1: none)
   static constexpr tagint NOATOM = MAXTAGINT;
   tagint first_atom(const std::function<bool(int)> &bad) const;
   double atom_value(tagint who, const std::function<double(int)> &value) const;

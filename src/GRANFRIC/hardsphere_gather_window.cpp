@@ -287,7 +287,7 @@ void HardsphereGatherWindow::take_back(double T1)
       const double off[3] = {(double) (noff > 0 ? stored[0] : 0), (double) (noff > 1 ? stored[1] : 0),
                              (double) (noff > 2 ? stored[2] : 0)};
       const int p = ed.last_partner(s);
-      fix.store_state(i, s, off, p < 0 ? 0.0 : (double) otags[p]);
+      fix.store_state(i, s, off, p < 0 ? 0.0 : (double) otags[p], w, w + 3);
     }
   }
   valid = !offsets_full;

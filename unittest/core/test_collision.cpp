@@ -307,6 +307,34 @@ TEST(CollisionLimits, JenkinsZhangDynamicAboveStaticCanCreateEnergy)
   EXPECT_NEAR(c.dE, de, 1e-12);
 }
 
+// A disc spinning very fast (omega up to 1e160) hit head-on at speed 1: Coulomb's limit binds,
+// |dP_t| = mu |dP_n| (here mu (1+r) m_n |g_n| = 0.475 with m_n = 1/2), the spins and the energy
+// change stay finite, and the energy change is the kinetic energies' difference where that is
+// still a number. (s = 1 + rt is below the rounding of 1 there: the map must not form rt.)
+TEST(CollisionLimits, WaltonAtExtremeSpinKeepsCoulombsLimit)
+{
+  const LawParams law = LawParams::walton(0.9, 0.5, 0.4);
+  for (double w : {1e3, 1e17, 1e100, 1e160}) {
+    Body b1, b2;
+    b1.q = b2.q = 0.5;
+    b1.v = {-1.0, 0.0, 0.0};
+    b2.w = {0.0, 0.0, w};
+    const Vec3 n(1.0, 0.0, 0.0);    // body 1 comes from +x onto body 2 at rest (n from 2 to 1)
+    const Collision c = collide(law, b1, b2, n);
+    EXPECT_TRUE(c.sliding) << w;
+    const double dPn = std::fabs(dot(c.dP, n)), dPt = norm(c.dP - dot(c.dP, n) * n);
+    EXPECT_NEAR(dPn, 0.5 * 1.9, 1e-12) << w;
+    EXPECT_NEAR(dPt, 0.5 * dPn, 1e-12 * dPn) << w;
+    EXPECT_TRUE(std::isfinite(c.dE) && std::isfinite(c.w2.z) && std::isfinite(c.rt)) << w;
+    EXPECT_LT(c.dE, 0.0) << w;
+    if (w < 1e100) {
+      const double de = kinetic_energy(after(b1, c.v1, c.w1)) + kinetic_energy(after(b2, c.v2, c.w2)) -
+          kinetic_energy(b1) - kinetic_energy(b2);
+      EXPECT_NEAR(c.dE, de, 1e-12 * kinetic_energy(b2)) << w;
+    }
+  }
+}
+
 TEST(CollisionLimits, WallIsHeavyLargePartner)
 {
   Rng rng(11);

@@ -661,7 +661,7 @@ TEST_F(FixErrors, Combinations)
   EXPECT_LMP_ERROR(lmp.get(), "run 0", "must be applied to group all");
   run(lmp.get(), "unfix ed\nfix ed all hardsphere/ed\nrun 0 post no");
   run(lmp.get(), "fix d all deform 1 x scale 1.1");
-  EXPECT_LMP_ERROR(lmp.get(), "run 0", "does not support a box changed during the run \\(fix d deform\\)");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0", "does not support a box whose size or shape changes during the run \\(fix d deform\\)");
 }
 
 TEST_F(FixErrors, RefusesOtherPairStyles)

@@ -66,7 +66,8 @@ TEST(InputChecks, OverlapsAreAnErrorUnlessAllowed)
   auto lmp = fails_at(pair_of_discs("2.7") + "fix ed all hardsphere/ed", "run 2 post no",
                       "^ERROR: Fix hardsphere/ed: atoms 1 and 2 overlap by 0.3 at the start of "
                       "the run \\(1 overlapping pairs in all\\). Remove them with delete_atoms "
-                      "overlap, create atoms with create_atoms ... overlap, or .* overlap allow");
+                      "overlap, create atoms with create_atoms ... overlap \\(or fix deposit ... "
+                      "near\\), or .* overlap allow");
   EXPECT_EQ(error_of(lmp.get(), "delete_atoms overlap 1.0 all all\nrun 2 post no"), "")
       << "the remedy the error names works";
   lmp.reset();
@@ -83,6 +84,22 @@ TEST(InputChecks, OverlapsAreAnErrorUnlessAllowed)
                 .find("overlap"),
             std::string::npos)
       << "no overlap, no message";
+}
+
+// atoms added during a run (fix deposit without near, into a region around an atom) are checked
+// for overlaps too, and the message says when they were added
+TEST(InputChecks, OverlapsOfAtomsAddedDuringTheRun)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\natom_style sphere\ncomm_modify vel yes\n"
+                 "region box block 0 10 0 10 0 10\ncreate_box 1 box\n"
+                 "create_atoms 1 single 5 5 5\nset group all diameter 1.0\nset group all mass 1.0\n"
+                 "pair_style hardsphere/rough\npair_coeff * * 0.9 0.0\nfix ed all hardsphere/ed\n"
+                 "timestep 0.1\nthermo 0\nrun 2 post no\n"
+                 "region ins block 4.9 5.1 4.9 5.1 4.9 5.1 units box\n");
+  EXPECT_LMP_ERROR(lmp.get(), "fix dep all deposit 1 1 1 4711 region ins\nrun 3 post no",
+                   "^ERROR: Fix hardsphere/ed: atoms 1 and 2 overlap by .* after atoms were added at "
+                   "step 3 \\(1 overlapping pairs in all\\)");
 }
 
 TEST(InputChecks, OverlapKeywordValues)

@@ -37,41 +37,43 @@ double kinetic_energy(const Body &b)
   return 0.5 * b.m * norm2(b.v) + 0.5 * b.q * b.m * b.a * b.a * norm2(b.w);
 }
 
-// The tangential part of the map for g_t, the tangential contact-point velocity (gt2 = |g_t|^2,
-// gt = |g_t|): the restitution rt (Coulomb's limit where it binds), the tangential impulse added
+// The tangential part of the map for g_t, the tangential contact-point velocity (gt = |g_t|):
+// the restitution rt (Coulomb's limit where it binds), the tangential impulse added
 // to c.dP, the spins, and the energy that the tangential motion loses added to c.dE.
+// The map is written with s = 1 + rt, the fraction of the sticking impulse: at Coulomb's limit
+// s = mu (m_n/m_t)(1+r)|g_n|/|g_t| is far below the rounding of 1 when the contact point moves
+// fast (a fast spin), so rt = -1 + s would lose it; the energy takes |g_t| once per factor, so
+// it stays finite wherever the impulse is.
 static void tangential(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n, const Vec3 &g_t,
-                       double gt2, double gt, double im1, double im2, double m_n, Collision &c)
+                       double gt, double im1, double im2, double m_n, Collision &c)
 {
   const double k1 = a2_over_I(b1), k2 = a2_over_I(b2);
   const double m_t = 1.0 / (im1 + im2 + k1 + k2);
-  // tangential restitution: Coulomb limit rt_C = -1 + mu (m_n/m_t)(1+r)|g_n|/|g_t|
-  double rt = law.rt_max;
+  double s = 1.0 + law.rt_max;
   if (gt > 0.0 && law.mu_s != INF) {
+    // s at Coulomb's limit with a friction coefficient of 1
     const double slide_scale = (m_n / m_t) * (1.0 + law.r) * std::fabs(c.gn) / gt;
     if (law.kind == LawKind::JZ) {
       // Jenkins-Zhang: stick iff the sticking impulse is below kappa_s times the normal one,
       // otherwise slide with |dP_t| = kappa_d |dP_n| (discontinuous when kappa_s != kappa_d)
-      if (!(1.0 + law.rt_max < law.mu_s * slide_scale)) {
-        rt = -1.0 + law.mu_d * slide_scale;
+      if (!(s < law.mu_s * slide_scale)) {
+        s = law.mu_d * slide_scale;
         c.sliding = true;
       }
-    } else {
-      const double rt_c = -1.0 + law.mu_s * slide_scale;
-      if (rt_c < law.rt_max) {
-        rt = rt_c;
-        c.sliding = true;
-      }
+    } else if (law.mu_s * slide_scale < s) {
+      s = law.mu_s * slide_scale;
+      c.sliding = true;
     }
   }
-  c.rt = rt;
-  const Vec3 dP_t = -(m_t * (1.0 + rt)) * g_t;
+  c.rt = s - 1.0;
+  const Vec3 dP_t = -(m_t * s) * g_t;
   c.dP = c.dP + dP_t;
   const Vec3 nxdP = cross(n, dP_t);    // = n x dP; exactly 0 without tangential impulse
   // w' = w - a n x dP / I with a/I = (a^2/I)/a
   c.w1 = b1.is_wall() ? Vec3() : b1.w - (k1 / b1.a) * nxdP;
   c.w2 = b2.is_wall() ? Vec3() : b2.w - (k2 / b2.a) * nxdP;
-  c.dE = c.dE - 0.5 * m_t * (1.0 - rt * rt) * gt2;
+  // (1 - rt^2) |g_t|^2 = s (2 - s) |g_t|^2
+  c.dE = c.dE - 0.5 * (m_t * s * gt) * (2.0 - s) * gt;
 }
 
 // A smooth law (rt = -1 whatever the contact, no Coulomb limit: rough with beta = -1, and the TC
@@ -90,13 +92,14 @@ Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Ve
   const double gn = dot(g, n);
   const Vec3 g_t = g - gn * n;
   const double gt2 = norm2(g_t);
-  const double gt = std::sqrt(gt2);
+  // (|g_t| without the square where that overflows: a contact point faster than 1e154)
+  const double gt = gt2 < INF ? std::sqrt(gt2) : std::hypot(g_t.x, g_t.y, g_t.z);
 
   Collision c;
   c.gn = gn;
   c.gt = gt;
   const double g2 = gn * gn + gt2;
-  c.cos_gamma = g2 > 0.0 ? gn / std::sqrt(g2) : -1.0;
+  c.cos_gamma = g2 > 0.0 ? gn / (g2 < INF ? std::sqrt(g2) : std::hypot(gn, gt)) : -1.0;
   c.dP = (-m_n * (1.0 + law.r) * gn) * n;
   c.dE = -0.5 * m_n * (1.0 - law.r * law.r) * gn * gn;
   if (law.smooth()) {
@@ -104,7 +107,7 @@ Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Ve
     c.w1 = b1.is_wall() ? Vec3() : b1.w;
     c.w2 = b2.is_wall() ? Vec3() : b2.w;
   } else {
-    tangential(law, b1, b2, n, g_t, gt2, gt, im1, im2, m_n, c);
+    tangential(law, b1, b2, n, g_t, gt, im1, im2, m_n, c);
   }
   c.v1 = b1.v + im1 * c.dP;
   c.v2 = b2.v - im2 * c.dP;
