@@ -2,8 +2,8 @@
 # Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """The LIGGGHTS host against the LAMMPS host (tools/liggghts, tools/lmp).
 
-The scenes of in.hosts (free cooling of rough discs; discs driven by kicks with spin driving;
-a vibrated bed with walls, gravity, the Jenkins-Zhang law and the TC model; the cooling scene
+The scenes of in.hosts (free cooling of rough discs; discs driven by kicks with spin driving,
+filling the box or its left half (on 2 ranks one starts with no atoms); a vibrated bed with walls, gravity, the Jenkins-Zhang law and the TC model; the cooling scene
 also with LIGGGHTS's atom_style granular) run under both hosts
 from the same initial state, serially and on 2 ranks. Every dumped number (positions,
 velocities, spins at %.17g) is the same bit for bit at the start and after 200 steps (both hosts
@@ -52,7 +52,7 @@ def states(path):
 
 
 @pytest.mark.parametrize("np_", [1, 2])
-@pytest.mark.parametrize("scene", ["cooling", "driven", "bed", "cooling-granular"])
+@pytest.mark.parametrize("scene", ["cooling", "driven", "half", "bed", "cooling-granular"])
 def test_same_trajectory_under_both_hosts(tmp_path, scene, np_):
     """(cooling-granular: LIGGGHTS with its atom_style granular, LAMMPS with sphere)"""
     res = {}
