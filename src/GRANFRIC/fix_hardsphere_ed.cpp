@@ -18,8 +18,10 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "input.h"
 #include "memory.h"
 #include "modify.h"
+#include "neighbor.h"
 #include "pair_hardsphere.h"
 #include "respa.h"
 #include "update.h"
@@ -251,6 +253,8 @@ void FixHardsphereED::init()
                  "hardsphere/wall (at least on one side)", "xyz"[d]);
   }
   check_walls_cross();
+  refuse_rerun();
+  warn_ignored_inputs();
   note_positions();
   if (comm->nprocs > 1 && parallel == GATHER && comm->me == 0)
     error->warning(FLERR,
@@ -311,6 +315,42 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
     if (atom->tag[i] == who) v = value(i);
   MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, world);
   return v;
+}
+
+// rerun computes from snapshots, between which hard particles collide: the collisions (their
+// counts, the energy they dissipate, the collisional part of the pressure) cannot be had from
+// them, and the run would report none without a word
+void FixHardsphereED::refuse_rerun() const
+{
+  const char *command = host::running_command(input);
+  if (command && strcmp(command, "rerun") == 0)
+    error->all(FLERR, "Fix hardsphere/ed {} cannot be used with rerun: hard-sphere collisions "
+               "happen between the snapshots, so neither their counts nor the collisional part "
+               "of the pressure can be computed from them (unfix {} to evaluate computes of "
+               "single configurations, such as compute hardsphere/temp; average the pressure in "
+               "the run itself)", id, id);
+}
+
+// What acts on the atoms through forces has no effect on hard particles, which move only by
+// free flight, gravity, collisions, walls and kicks: a fix that adds or changes forces (fix
+// viscous, langevin, addforce, spring/self, freeze, setforce, ...), or pair exclusions (every
+// pair of hard particles collides). Warned, not refused: such a fix may be meant for other
+// output, and it changes nothing here.
+void FixHardsphereED::warn_ignored_inputs() const
+{
+  if (comm->me != 0) return;
+  for (int k = 0; k < modify->nfix; k++) {
+    const Fix *f = modify->fix[k];
+    if (f == this || utils::strmatch(f->style, "^hardsphere/") || utils::strmatch(f->style, "^enforce2d")) continue;
+    if (modify->fmask[k] & POST_FORCE)
+      error->warning(FLERR, "Fix {} ({}) acts through forces, which the hard particles of fix "
+                     "hardsphere/ed {} do not feel: it has no effect on their motion (they move "
+                     "by free flight, the gravity keyword, collisions, fix hardsphere/wall and fix "
+                     "hardsphere/kick)", f->id, f->style, id);
+  }
+  if (host::pairs_excluded(neighbor))
+    error->warning(FLERR, "neigh_modify exclude has no effect on fix hardsphere/ed {}: every pair "
+                   "of hard particles collides", id);
 }
 
 // In 2d the core moves discs in the plane z = 0 and spins them about z: an atom off that plane

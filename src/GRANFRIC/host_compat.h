@@ -23,6 +23,8 @@
 #include <vector>
 
 #ifndef GRANFRIC_LIGGGHTS
+#include "input.h"
+#include "neighbor.h"
 #include "utils.h"
 #else
 #include <cmath>
@@ -54,6 +56,13 @@ constexpr const char *GHOST_VELOCITY = "comm_modify vel yes";
 // does fix f change the box (its size or shape)? Moving the subdomains' boundaries (fix
 // balance) does not change it: the windows follow the atoms, wherever their ranks are.
 inline bool changes_box(const Fix *f) { return (f->box_change & ~Fix::BOX_CHANGE_DOMAIN) != 0; }
+// the command being run (LIGGGHTS keeps it protected: null there), and whether neigh_modify
+// exclude removed pairs from the neighbour lists (LIGGGHTS keeps that protected: false there)
+inline const char *running_command(const Input *input) { return input->command; }
+inline bool pairs_excluded(const Neighbor *neighbor)
+{
+  return neighbor->nex_type + neighbor->nex_group + neighbor->nex_mol > 0;
+}
 // a pair style's per-step set-up of energy and virial tallies, its cut-off flags, its mixing
 #define GRANFRIC_EV_INIT(eflag, vflag) ev_init(eflag, vflag)
 #define GRANFRIC_PAIR_FLAGS finitecutflag = 1
@@ -72,6 +81,8 @@ inline bool changes_box(const Fix *f)
 {
   return f->box_change_size || f->box_change_shape;
 }
+inline const char *running_command(const Input *) { return nullptr; }
+inline bool pairs_excluded(const Neighbor *) { return false; }
 #define GRANFRIC_EV_INIT(eflag, vflag) \
   do {                                 \
     if (eflag || vflag)                \

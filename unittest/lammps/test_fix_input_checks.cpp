@@ -102,6 +102,24 @@ TEST(InputChecks, OverlapsOfAtomsAddedDuringTheRun)
                    "step 3 \\(1 overlapping pairs in all\\)");
 }
 
+// fixes that act through forces, and pair exclusions, change nothing for hard particles: a
+// warning names each (fix enforce2d, which keeps discs in the plane, is not warned about);
+// without them, no warning
+TEST(InputChecks, ForceFixesAndExclusionsWarned)
+{
+  const std::string out = screen_of(pair_of_discs("3.5") + "fix ed all hardsphere/ed\n"
+                                    "fix v all viscous 0.5\nfix a all addforce 1.0 0.0 0.0\n"
+                                    "fix e all enforce2d\nneigh_modify exclude type 1 1\nrun 1 post no");
+  EXPECT_NE(out.find("WARNING: Fix v (viscous) acts through forces, which the hard particles of fix "
+                     "hardsphere/ed ed do not feel"), std::string::npos) << out;
+  EXPECT_NE(out.find("WARNING: Fix a (addforce) acts through forces"), std::string::npos) << out;
+  EXPECT_EQ(out.find("Fix e (enforce2d)"), std::string::npos) << out;
+  EXPECT_NE(out.find("WARNING: neigh_modify exclude has no effect on fix hardsphere/ed ed"),
+            std::string::npos) << out;
+  EXPECT_EQ(screen_of(pair_of_discs("3.5") + "fix ed all hardsphere/ed\nrun 1 post no").find("WARNING"),
+            std::string::npos);
+}
+
 TEST(InputChecks, OverlapKeywordValues)
 {
   auto lmp = make_lammps();
