@@ -120,6 +120,20 @@ void FixHardsphereWall::init()
   if (p < domain->boxlo[dim] || p > domain->boxhi[dim])
     error->all(FLERR, "Fix hardsphere/wall {} position {} lies outside the box ({} to {})", id, p,
                domain->boxlo[dim], domain->boxhi[dim]);
+  // a vibrating wall carries atoms with it: in a fixed boundary (f) the centres of the atoms it
+  // touches (at least the smallest radius from it) must stay in the box, or LAMMPS loses them
+  if (amplitude > 0.0 && domain->boundary[dim][side < 0 ? 0 : 1] == 1) {
+    double amin = granfric::INF;
+    for (int i = 0; i < atom->nlocal; i++) amin = std::min(amin, atom->radius[i]);
+    MPI_Allreduce(MPI_IN_PLACE, &amin, 1, MPI_DOUBLE, MPI_MIN, world);
+    const double reach = side < 0 ? p - amplitude + amin : p + amplitude - amin;
+    if (amin < granfric::INF && (reach < domain->boxlo[dim] || reach > domain->boxhi[dim]))
+      error->all(FLERR, "Fix hardsphere/wall {} (position {}, amplitude {}) carries the centres of "
+                 "atoms of radius {} to {}, outside the box ({} to {} in {}, a fixed boundary), "
+                 "where LAMMPS would lose them. Move the wall inward, enlarge the box, or use "
+                 "boundary m", id, p, amplitude, amin, reach, domain->boxlo[dim], domain->boxhi[dim],
+                 "xyz"[dim]);
+  }
 }
 
 // the wall's geometry and motion (no collision law)

@@ -640,6 +640,55 @@ TEST(EventDriven, VibratingBaseEqualsReference)
   }
 }
 
+// A grain leaves a base that vibrates very fast (omega = 1e7, amplitude 1e-6) faster than the
+// base can follow and comes back after a flight of about 200 time units, 6e8 half periods: its
+// contact is found where it comes down to the band of the base's motion, as a brute-force march
+// over the last periods finds it. The flight above the band is skipped, not walked through half
+// period by half period (piecewise parabolic and sinusoidal motion).
+TEST(EventDriven, FastVibratingBaseAfterALongFlight)
+{
+  for (bool sine : {false, true}) {
+    Reference ref;
+    ref.dim = 2;
+    ref.lo = Vec3(0.0, 0.0, -0.5);
+    ref.L = Vec3(10.0, 10000.0, 1.0);
+    ref.periodic[1] = false;
+    ref.gravity = Vec3(0.0, -1.0, 0.0);
+    ref.laws.assign(4, LawParams::rough(0.8, -1.0));
+    RefWall base{1, -1, 1.0, LawParams::rough(0.8, -1.0), 1e-6, 1e7, sine};
+    ref.walls.push_back(base);
+    ref.walls.push_back({1, +1, 9999.0, LawParams::rough(0.8, -1.0)});
+    RefParticle g;
+    g.x = Vec3(5.0, base.pos + 0.9e-6 + 0.5, 0.0);    // inside the band of the base's motion
+    g.v = Vec3(0.0, 100.0, 0.0);                       // faster than the base (12.7 at most)
+    g.q = 0.5;
+    ref.p.push_back(g);
+    // the brute-force contact: the grain comes down to the band's top at t_top; march from
+    // two periods before it in steps of 1/20000 period, then bisect
+    const double top = base.pos + base.A + g.a;
+    const double t_top = crossing_time(g.x.y, g.v.y, -1.0, top, -1);
+    auto gap = [&](double t) { return g.x.y + g.v.y * t - 0.5 * t * t - g.a - base.height(t); };
+    const double h = 2.0 * M_PI / base.omega / 20000.0;
+    double t0 = t_top - 40000.0 * h, tc = -1.0;
+    for (double f0 = gap(t0); tc < 0.0 && t0 < t_top + 1.0; t0 += h) {
+      const double f1 = gap(t0 + h);
+      if (f0 > 0.0 && f1 <= 0.0) {
+        double lo = t0, hi = t0 + h;
+        for (int it = 0; it < 200; it++) (gap(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+        tc = hi;
+      }
+      f0 = f1;
+    }
+    ASSERT_GT(tc, 199.0) << sine;
+    CoreRun early(ref), late(ref);
+    early.ed.start();
+    late.ed.start();
+    EXPECT_EQ(early.ed.advance_to(tc - 1e-7).wall_collisions, 0) << sine;
+    EXPECT_EQ(late.ed.advance_to(tc + 1e-7).wall_collisions, 1) << sine;
+    EXPECT_GT(late.ed.velocity(0, tc + 1e-7).y, 0.0) << sine;    // thrown up again
+  }
+}
+
 // The cell width changes only which candidates are tested: the trajectory is the brute-force
 // reference's for the automatic width (wider than the contact distance in a dilute 2d gas) and
 // for any requested width, down to a single cell across the box (periodic images at two shifts).

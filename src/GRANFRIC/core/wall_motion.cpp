@@ -81,6 +81,19 @@ static double sine_contact(const EDWall &w, double clock, double now, double x, 
   long guard = 0;
   while (t0 < tmax && ++guard < 100000000L) {
     double t1 = t0 + h;
+    const double xt = x + (v + 0.5 * g * (t0 - now)) * (t0 - now);
+    if (xt - a > w.pos + w.A) {
+      // above the wall's highest point until the downward crossing of it: no contact before,
+      // so a long flight costs no steps of a quarter period
+      const double down = crossing_time(xt, v + g * (t0 - now), g, w.pos + w.A + a, -1);
+      if (down >= NEVER) return NEVER;
+      if (down > hmax) {
+        t0 += down;
+        f0 = gap(t0, df0);
+        h = hmax;
+        continue;
+      }
+    }
     if (f0 <= 0.0) {
       // at (or a hair inside) the wall, as after a contact: approaching means a contact now;
       // moving away, f' >= f'(t0) - M s stays >= 0 for s <= f'(t0)/M, so no downward crossing
@@ -138,6 +151,7 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
     if (horizon == NEVER && v < 0.0) horizon = crossing_time(x, v, g, w.pos - w.A + a, -1);
   }
   double t = now + time_above_wall(w, x, v, g, a);
+  const double top = w.pos + w.A + a;
   for (long iter = 0; t < NEVER && iter < 100000000L; iter++) {
     const double s = clock + t;
     const double k = std::floor(s / H);
@@ -146,6 +160,18 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
     w.motion(s, ww, vw, aw);
     const double dt = t - now;
     const double xp = x + v * dt + 0.5 * g * dt * dt, vp = v + g * dt;
+    if (xp > top) {
+      // above the wall's highest point until the downward crossing of it: no contact before;
+      // go on from the half period in which that crossing falls, as the loop reaches it (the
+      // same numbers), not through every half period of a long flight
+      const double down = crossing_time(xp, vp, g, top, -1);
+      if (down >= NEVER) return NEVER;
+      const double kc = std::floor((clock + t + down) / H);
+      if (kc > k + 1.0) {
+        t = kc * H - clock;
+        continue;
+      }
+    }
     const double tau = crossing_time(xp - a - ww, vp - vw, g - aw, 0.0, -1);
     if (tau < NEVER && t + tau <= tend) return t + tau;
     if (horizon < NEVER && tend > now + horizon + H) return NEVER;
