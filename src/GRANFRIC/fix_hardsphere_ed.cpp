@@ -275,6 +275,7 @@ void FixHardsphereED::setup(int vflag)
   check_box_fits_atoms();
   check_plane();
   check_atoms_between_walls();
+  check_scales();
   // A new run may bring new coefficients, a new box, new walls or new atoms. The epoch (and the
   // event queue) of the last run goes on only if the core's configuration is the same in every
   // respect; the atoms themselves are compared at the first window (as between steps).
@@ -315,6 +316,58 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
     if (atom->tag[i] == who) v = value(i);
   MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, world);
   return v;
+}
+
+// Absurd speeds, accelerations, steps and wall temperatures end at the start of the run, not
+// after the event cap's maxevents x atoms cell crossings (minutes): the atoms' paths in one
+// step (speed, gravity, the speed a vibrating or thermal wall gives) summed over the atoms, in
+// the largest diameters (the narrowest cells), against that cap; and a thermal wall under
+// gravity toward it, which holds the grains it re-emits at rest (T = 0) or lets them hop
+// maxevents times and more per step.
+void FixHardsphereED::check_scales() const
+{
+  const double dt = update->dt, g = std::hypot(gravity[0], gravity[1], gravity[2]);
+  double wmax = 0.0, tmax = 0.0;    // the fastest wall's speed, the hottest wall's temperature
+  for (auto *w : walls) {
+    const granfric::EDWall e = w->wall();
+    if (e.vibrating()) wmax = std::max(wmax, e.A * e.omega * (e.sine ? 1.0 : 4.0 / M_PI));
+    if (e.T > 0.0) tmax = std::max(tmax, e.T);
+    const double toward = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
+    if (e.T < 0.0 || !(toward > 0.0)) continue;
+    double mmax = 0.0;
+    for (int i = 0; i < atom->nlocal; i++) mmax = std::max(mmax, atom->rmass[i]);
+    MPI_Allreduce(MPI_IN_PLACE, &mmax, 1, MPI_DOUBLE, MPI_MAX, world);
+    const double hop = 2.0 * std::sqrt(e.T / mmax) / toward;    // a grain's typical hop
+    if (!(hop * maxevents > dt))
+      error->all(FLERR, "Fix hardsphere/wall {} (thermal at T = {}) under gravity {} toward it: {}; give "
+                 "it a temperature at which a grain of mass {} hops for more than a step / "
+                 "maxevents = {:.3g} (or raise maxevents)", w->wall_id(), e.T * force->mvv2e / force->boltz,
+                 toward, e.T == 0.0 ? "the grains it re-emits stay at rest on it, which event-driven motion cannot hold"
+                                    : host::format("a grain it re-emits hops for about {}, so it would collide {:.3g} times and more per step of {}", hop, dt / hop, dt),
+                 mmax, dt / maxevents);
+  }
+  double path = 0.0, mmin = granfric::INF, amax = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double *v = atom->v[i];
+    path += std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    mmin = std::min(mmin, atom->rmass[i]);
+    amax = std::max(amax, atom->radius[i]);
+  }
+  double all[1], aall;
+  MPI_Allreduce(&path, all, 1, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(&amax, &aall, 1, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(MPI_IN_PLACE, &mmin, 1, MPI_DOUBLE, MPI_MIN, world);
+  const double n = (double) atom->natoms;
+  if (n == 0.0) return;
+  const double vwall = std::max(2.0 * wmax, tmax > 0.0 ? 5.0 * std::sqrt(tmax / mmin) : 0.0);
+  const double mean = (all[0] / n + vwall) * dt + 0.5 * g * dt * dt;    // per atom and step
+  if (!(mean / (2.0 * aall) <= (double) maxevents))
+    error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
+               "average (mean speed {:.3g}, {:.3g} from walls that vibrate or are thermal, gravity "
+               "{:.3g}, timestep {:.3g}), "
+               "more cells than the event cap maxevents = {} allows each atom in a step: lower "
+               "the speeds, the walls' speed or temperature, gravity or the timestep", mean / (2.0 * aall),
+               all[0] / n, vwall, g, dt, maxevents);
 }
 
 // rerun computes from snapshots, between which hard particles collide: the collisions (their

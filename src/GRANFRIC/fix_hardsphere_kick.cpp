@@ -49,6 +49,11 @@ FixHardsphereKick::FixHardsphereKick(LAMMPS *lmp, int narg, char **arg) :
       if (!(spin >= 0.0))
         error->all(FLERR, "Fix hardsphere/kick spin = {} must be >= 0 (rotational power as a "
                    "fraction of the translational power)", spin);
+      if (spin > MAX_SPIN)
+        error->all(FLERR, "Fix hardsphere/kick spin = {} is out of range (at most {:g} times the "
+                   "translational power: rough collisions pass the spins' energy on to the "
+                   "translation, and speeds that far beyond the driving end the run in cell "
+                   "crossings)", spin, MAX_SPIN);
       iarg += 2;
     } else {
       error->all(FLERR, "Unknown fix hardsphere/kick keyword: {} (allowed: momentum, spin)",

@@ -48,9 +48,9 @@ class FixHardsphereKick : public Fix, public HardsphereDriving {
   void apply(granfric::EventDriven &ed, const std::vector<tagint> &tag, const std::vector<int> &mask,
              long k, int dim, const granfric::Vec3 &dvcm) const override;
   // bounds (doc/fix_hardsphere_kick.rst): kicks per step, kicks per step times atoms, the kick
-  // index of a run, v_dr
+  // index of a run, v_dr, spin
   static constexpr double MAX_KICKS_PER_STEP = 1e6, MAX_ATOM_KICKS_PER_STEP = 1e9;
-  static constexpr double MAX_KICK_INDEX = 1e15, MAX_VDR = 1e150;
+  static constexpr double MAX_KICK_INDEX = 1e15, MAX_VDR = 1e150, MAX_SPIN = 1e6;
 
  private:
   granfric::Kicks law;  // f_dr, v_dr, seed, momentum, spin

@@ -235,15 +235,20 @@ void HardsphereGatherWindow::advance(double T1)
                  e.n, update->ntimestep, e.n - 1, (tagint) otags[e.i], e.speed);
     bool creating = false;
     for (const auto &law : fix.law_table()) creating = creating || law.can_create_energy();
+    const std::string partner = e.j < 0 ? host::format("fix hardsphere/wall {}", fix.walls[-1 - e.j]->wall_id())
+                                        : host::format("atom {}", (tagint) otags[e.j]);
+    const std::string collapse = fix.tc > 0.0
+        ? host::format("inelastic collapse despite the TC model (tc {}): raise tc or maxevents", fix.tc)
+        : std::string("inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
     error->all(FLERR,
                "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
-               "last one with atom {} at time {}: {}",
-               (tagint) otags[e.i], e.n, update->ntimestep, fix.maxevents, (tagint) otags[e.j],
+               "last one with {} at time {}: {}",
+               (tagint) otags[e.i], e.n, update->ntimestep, fix.maxevents, partner,
                fix.epoch_clock + e.t,
                creating ? "a collision law here can create energy (hardsphere/jz with kappa_d > "
                           "kappa_s), which can run away; use kappa_d <= kappa_s, or raise "
                           "maxevents if the energy stays bounded"
-                        : "inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
+                        : collapse);
   } catch (std::exception &e) {
     fix.core_failed(e, true);
   }

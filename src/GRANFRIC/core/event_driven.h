@@ -236,7 +236,8 @@ class EventCapError : public std::runtime_error {
       std::runtime_error(what), i(i_), j(j_), t(t_), n(n_), kind(k), speed(speed_)
   {
   }
-  int i, j;      // particle indices of the event that crossed the cap (j = i: not a pair)
+  int i, j;      // particle indices of the event that crossed the cap (j = i: a cell crossing;
+                 // j < 0: a collision with wall -1 - j)
   double t;      // window time
   long n;        // COLLISIONS: collisions of particle i in this window; CROSSINGS: all crossings
   Kind kind;

@@ -84,7 +84,7 @@ void EventDriven::collide_wall(int i)
     s << "particle " << ext[i] << " collided " << ni << " times within one window (cap "
       << opt.max_collisions << "), the last time with a wall: inelastic collapse; use the TC "
       << "model (tc) or a larger cap";
-    throw EventCapError(s.str(), ext[i], ext[i], t, ni);
+    throw EventCapError(s.str(), ext[i], -1 - (int) S[i].wall, t, ni);
   }
   predict(i);
   reschedule(i);
