@@ -685,18 +685,24 @@ TEST_F(FixErrors, RefusesOtherPairStyles)
                    "\\(found granular\\)");
 }
 
+// side^2 elastic smooth discs at rest (area fraction 0.05) kicked once per unit time with
+// v_dr = 0.05 (fix k), steps of 0.3
+std::string kicked_gas(int side)
+{
+  return "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n"
+         "lattice sq 0.0637\nregion box block 0 " + std::to_string(side) + " 0 " + std::to_string(side) +
+         " -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 box\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
+         "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
+         "fix ed all hardsphere/ed\nfix k all hardsphere/kick 1.0 0.05 4711\ntimestep 0.3\n";
+}
+
 // homogeneous driving: without dissipation (elastic smooth discs) T_tr grows at the rate
 // f_dr m v_dr^2 (Herbst eqs 7-9), kicks keep the total momentum zero, and the energy books close
 TEST(FixHardsphereKick, HeatingRateMomentumAndEnergyBooks)
 {
   auto lmp = make_lammps();
-  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n"
-                 "lattice sq 0.0637\nregion box block 0 100 0 100 -0.5 0.5\ncreate_box 1 box\n"
-                 "create_atoms 1 box\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
-                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
-                 "fix ed all hardsphere/ed\nfix k all hardsphere/kick 1.0 0.05 4711\n"
-                 "compute T all hardsphere/temp\nthermo_style custom step c_T[1]\n"
-                 "timestep 0.3\nrun 100 post no");
+  run(lmp.get(), kicked_gas(100) + "compute T all hardsphere/temp\nthermo_style custom step c_T[1]\n"
+                                   "run 100 post no");
   auto *T = lmp->modify->get_compute_by_id("T");
   T->compute_vector();
   const double t = 30.0, expected = 1.0 * 1.0 * 0.05 * 0.05 * t * (1.0 - 1.0 / 10000);
@@ -725,12 +731,7 @@ TEST(FixHardsphereKick, HeatingRateMomentumAndEnergyBooks)
 TEST(FixHardsphereKick, ScheduleFollowsResetTimestep)
 {
   auto lmp = make_lammps();
-  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\n"
-                 "lattice sq 0.0637\nregion box block 0 20 0 20 -0.5 0.5\ncreate_box 1 box\n"
-                 "create_atoms 1 box\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
-                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
-                 "fix ed all hardsphere/ed\nfix k all hardsphere/kick 1.0 0.05 4711\n"
-                 "timestep 0.3\nrun 30 post no");
+  run(lmp.get(), kicked_gas(20) + "run 30 post no");
   auto *k = lmp->modify->get_fix_by_id("k");
   auto *ed = lmp->modify->get_fix_by_id("ed");
   EXPECT_EQ(k->compute_scalar(), 9.0);
