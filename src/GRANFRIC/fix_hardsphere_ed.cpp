@@ -211,11 +211,14 @@ void FixHardsphereED::init()
                "is the window in which the atoms move forward", update->dt);
   // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), and
   // fix balance may move the subdomains, but no fix may change the box (deform, barostats)
-  for (const auto &f : host::fixes(modify))
+  balancing = false;
+  for (const auto &f : host::fixes(modify)) {
+    balancing = balancing || host::moves_subdomains(f);
     if (host::changes_box(f))
       error->all(FLERR, "Fix hardsphere/ed does not support a box whose size or shape changes "
                  "during the run (fix {} {}): the hard-sphere windows need a fixed box (fix "
                  "balance, which moves only the subdomain boundaries, is supported)", f->id, f->style);
+  }
   // with run_style respa the window is the outermost step (collisions need no forces)
   nlevels_respa = 0;
   if (utils::strmatch(update->integrate_style, "^respa"))
@@ -322,8 +325,8 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
 // after the event cap's maxevents x atoms cell crossings (minutes): the atoms' paths in one
 // step (speed, gravity, the speed a vibrating or thermal wall gives) summed over the atoms, in
 // the largest diameters (the narrowest cells), against that cap; and a thermal wall under
-// gravity toward it, which holds the grains it re-emits at rest (T = 0) or lets them hop
-// maxevents times and more per step.
+// gravity toward it, which holds the grains it re-emits at rest (T = 0) or nearly (they hop
+// less than a millionth of a diameter high, or maxevents times and more per step).
 void FixHardsphereED::check_scales() const
 {
   const double dt = update->dt, g = std::hypot(gravity[0], gravity[1], gravity[2]);
@@ -334,17 +337,25 @@ void FixHardsphereED::check_scales() const
     if (e.T > 0.0) tmax = std::max(tmax, e.T);
     const double toward = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
     if (e.T < 0.0 || !(toward > 0.0)) continue;
-    double mmax = 0.0;
-    for (int i = 0; i < atom->nlocal; i++) mmax = std::max(mmax, atom->rmass[i]);
-    MPI_Allreduce(MPI_IN_PLACE, &mmax, 1, MPI_DOUBLE, MPI_MAX, world);
-    const double hop = 2.0 * std::sqrt(e.T / mmax) / toward;    // a grain's typical hop
-    if (!(hop * maxevents > dt))
-      error->all(FLERR, "Fix hardsphere/wall {} (thermal at T = {}) under gravity {} toward it: {}; give "
-                 "it a temperature at which a grain of mass {} hops for more than a step / "
-                 "maxevents = {:.3g} (or raise maxevents)", w->wall_id(), e.T * force->mvv2e / force->boltz,
-                 toward, e.T == 0.0 ? "the grains it re-emits stay at rest on it, which event-driven motion cannot hold"
-                                    : host::format("a grain it re-emits hops for about {}, so it would collide {:.3g} times and more per step of {}", hop, dt / hop, dt),
-                 mmax, dt / maxevents);
+    double mx[2] = {0.0, 0.0};    // the heaviest mass, the largest radius
+    for (int i = 0; i < atom->nlocal; i++) {
+      mx[0] = std::max(mx[0], atom->rmass[i]);
+      mx[1] = std::max(mx[1], atom->radius[i]);
+    }
+    MPI_Allreduce(MPI_IN_PLACE, mx, 2, MPI_DOUBLE, MPI_MAX, world);
+    // a grain re-emitted at T hops for about 2 sqrt(T/m)/g, kT/(m g) high
+    const double hop = 2.0 * std::sqrt(e.T / mx[0]) / toward, height = e.T / (mx[0] * toward);
+    if (hop * maxevents > dt && height > 1e-6 * 2.0 * mx[1]) continue;
+    const std::string why = e.T == 0.0
+        ? std::string("the grains it re-emits stay at rest on it")
+        : host::format("a grain of mass {} it re-emits hops {:.3g} diameters high, for {:.3g} (about {:.3g} "
+                       "times per step of {}): it stays practically at rest on the wall", mx[0],
+                       height / (2.0 * mx[1]), hop, dt / hop, dt);
+    error->all(FLERR, "Fix hardsphere/wall {} (thermal at T = {}) under gravity {} toward it: {}, "
+               "which event-driven motion can only follow by colliding without end. Give it a "
+               "temperature at which the grains hop at least a millionth of a diameter high and "
+               "for longer than a step / maxevents = {:.3g}", w->wall_id(),
+               e.T * force->mvv2e / force->boltz, toward, why, dt / maxevents);
   }
   double path = 0.0, mmin = granfric::INF, amax = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {

@@ -73,7 +73,10 @@ class FixHardsphereED : public Fix {
   void post_force_respa(int, int, int) override;
   void setup(int) override;
   void setup_pre_neighbor() override { undo_rounding(); }
-  void pre_neighbor() override { undo_rounding(); }
+  void pre_neighbor() override
+  {
+    if (balancing) undo_rounding();
+  }
   void initial_integrate(int) override;
   void initial_integrate_respa(int, int, int) override;
   double compute_vector(int) override;
@@ -187,6 +190,7 @@ class FixHardsphereED : public Fix {
   // serial run's bits.
   void note_positions();
   void undo_rounding();
+  bool balancing = false;    // a fix moves the subdomains during the run (fix balance)
   class PairHardsphere *pair;
 
   granfric::EventDriven ed;

@@ -56,6 +56,8 @@ constexpr const char *GHOST_VELOCITY = "comm_modify vel yes";
 // does fix f change the box (its size or shape)? Moving the subdomains' boundaries (fix
 // balance) does not change it: the windows follow the atoms, wherever their ranks are.
 inline bool changes_box(const Fix *f) { return (f->box_change & ~Fix::BOX_CHANGE_DOMAIN) != 0; }
+// does fix f move the subdomains' boundaries during a run (fix balance)?
+inline bool moves_subdomains(const Fix *f) { return (f->box_change & Fix::BOX_CHANGE_DOMAIN) != 0; }
 // the command being run (LIGGGHTS keeps it protected: null there), and whether neigh_modify
 // exclude removed pairs from the neighbour lists (LIGGGHTS keeps that protected: false there)
 inline const char *running_command(const Input *input) { return input->command; }
@@ -81,6 +83,7 @@ inline bool changes_box(const Fix *f)
 {
   return f->box_change_size || f->box_change_shape;
 }
+inline bool moves_subdomains(const Fix *f) { return f->box_change_domain != 0; }
 inline const char *running_command(const Input *) { return nullptr; }
 inline bool pairs_excluded(const Neighbor *) { return false; }
 #define GRANFRIC_EV_INIT(eflag, vflag) \
