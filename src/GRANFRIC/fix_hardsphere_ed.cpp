@@ -324,61 +324,66 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
 // Absurd speeds, accelerations, steps and wall temperatures end at the start of the run, not
 // after the event cap's maxevents x atoms cell crossings (minutes): the atoms' paths in one
 // step (speed, gravity, the speed a vibrating or thermal wall gives) summed over the atoms, in
-// the largest diameters (the narrowest cells), against that cap; and a thermal wall under
-// gravity toward it, which holds the grains it re-emits at rest (T = 0) or nearly (they hop
-// less than a millionth of a diameter high, or maxevents times and more per step).
+// the largest diameters (the narrowest cells), against that cap; and thermal walls under
+// gravity (check_thermal_walls).
 void FixHardsphereED::check_scales() const
 {
+  // (over all atoms: the summed speed, the largest mass, radius and inverse mass)
+  double sum = 0.0, mx[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double *v = atom->v[i];
+    sum += std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    mx[0] = std::max(mx[0], atom->rmass[i]);
+    mx[1] = std::max(mx[1], atom->radius[i]);
+    mx[2] = std::max(mx[2], 1.0 / atom->rmass[i]);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPI_DOUBLE, MPI_MAX, world);
+  const double n = (double) atom->natoms;
+  if (n == 0.0) return;
+  check_thermal_walls(mx[0], mx[1]);
   const double dt = update->dt, g = std::hypot(gravity[0], gravity[1], gravity[2]);
   double wmax = 0.0, tmax = 0.0;    // the fastest wall's speed, the hottest wall's temperature
   for (auto *w : walls) {
-    const granfric::EDWall e = w->wall();
-    if (e.vibrating()) wmax = std::max(wmax, e.A * e.omega * (e.sine ? 1.0 : 4.0 / M_PI));
-    if (e.T > 0.0) tmax = std::max(tmax, e.T);
+    const granfric::EDWall e = w->geometry();
+    wmax = std::max(wmax, e.speed_bound());
+    tmax = std::max(tmax, e.T);
+  }
+  const double vwall = std::max(2.0 * wmax, tmax > 0.0 ? 5.0 * std::sqrt(tmax * mx[2]) : 0.0);
+  const double mean = (sum / n + vwall) * dt + 0.5 * g * dt * dt;    // per atom and step
+  if (!(mean / (2.0 * mx[1]) <= (double) maxevents))
+    error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
+               "average (mean speed {:.3g}, {:.3g} from walls that vibrate or are thermal, gravity "
+               "{:.3g}, timestep {:.3g}), "
+               "more cells than the event cap maxevents = {} allows each atom in a step: lower "
+               "the speeds, the walls' speed or temperature, gravity or the timestep", mean / (2.0 * mx[1]),
+               sum / n, vwall, g, dt, maxevents);
+}
+
+// A thermal wall under gravity toward it holds the grains it re-emits at rest (T = 0) or
+// nearly (they hop less than a millionth of a diameter high, or maxevents times and more per
+// step): refused (mmax, amax: the heaviest mass, the largest radius)
+void FixHardsphereED::check_thermal_walls(double mmax, double amax) const
+{
+  const double dt = update->dt;
+  for (auto *w : walls) {
+    const granfric::EDWall e = w->geometry();
     const double toward = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
     if (e.T < 0.0 || !(toward > 0.0)) continue;
-    double mx[2] = {0.0, 0.0};    // the heaviest mass, the largest radius
-    for (int i = 0; i < atom->nlocal; i++) {
-      mx[0] = std::max(mx[0], atom->rmass[i]);
-      mx[1] = std::max(mx[1], atom->radius[i]);
-    }
-    MPI_Allreduce(MPI_IN_PLACE, mx, 2, MPI_DOUBLE, MPI_MAX, world);
     // a grain re-emitted at T hops for about 2 sqrt(T/m)/g, kT/(m g) high
-    const double hop = 2.0 * std::sqrt(e.T / mx[0]) / toward, height = e.T / (mx[0] * toward);
-    if (hop * maxevents > dt && height > 1e-6 * 2.0 * mx[1]) continue;
+    const double hop = 2.0 * std::sqrt(e.T / mmax) / toward, height = e.T / (mmax * toward);
+    if (hop * maxevents > dt && height > 1e-6 * 2.0 * amax) continue;
     const std::string why = e.T == 0.0
         ? std::string("the grains it re-emits stay at rest on it")
         : host::format("a grain of mass {} it re-emits hops {:.3g} diameters high, for {:.3g} (about {:.3g} "
-                       "times per step of {}): it stays practically at rest on the wall", mx[0],
-                       height / (2.0 * mx[1]), hop, dt / hop, dt);
+                       "times per step of {}): it stays practically at rest on the wall", mmax,
+                       height / (2.0 * amax), hop, dt / hop, dt);
     error->all(FLERR, "Fix hardsphere/wall {} (thermal at T = {}) under gravity {} toward it: {}, "
                "which event-driven motion can only follow by colliding without end. Give it a "
                "temperature at which the grains hop at least a millionth of a diameter high and "
                "for longer than a step / maxevents = {:.3g}", w->wall_id(),
                e.T * force->mvv2e / force->boltz, toward, why, dt / maxevents);
   }
-  double path = 0.0, mmin = granfric::INF, amax = 0.0;
-  for (int i = 0; i < atom->nlocal; i++) {
-    const double *v = atom->v[i];
-    path += std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    mmin = std::min(mmin, atom->rmass[i]);
-    amax = std::max(amax, atom->radius[i]);
-  }
-  double all[1], aall;
-  MPI_Allreduce(&path, all, 1, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(&amax, &aall, 1, MPI_DOUBLE, MPI_MAX, world);
-  MPI_Allreduce(MPI_IN_PLACE, &mmin, 1, MPI_DOUBLE, MPI_MIN, world);
-  const double n = (double) atom->natoms;
-  if (n == 0.0) return;
-  const double vwall = std::max(2.0 * wmax, tmax > 0.0 ? 5.0 * std::sqrt(tmax / mmin) : 0.0);
-  const double mean = (all[0] / n + vwall) * dt + 0.5 * g * dt * dt;    // per atom and step
-  if (!(mean / (2.0 * aall) <= (double) maxevents))
-    error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
-               "average (mean speed {:.3g}, {:.3g} from walls that vibrate or are thermal, gravity "
-               "{:.3g}, timestep {:.3g}), "
-               "more cells than the event cap maxevents = {} allows each atom in a step: lower "
-               "the speeds, the walls' speed or temperature, gravity or the timestep", mean / (2.0 * aall),
-               all[0] / n, vwall, g, dt, maxevents);
 }
 
 // rerun computes from snapshots, between which hard particles collide: the collisions (their

@@ -247,6 +247,7 @@ class FixHardsphereED : public Fix {
   void check_plane();                      // (2d: every atom at z = 0, vz = 0, spin about z)
   void refuse_rerun() const;
   void check_scales() const;
+  void check_thermal_walls(double mmax, double amax) const;
   void warn_ignored_inputs() const;
   bigint plane_checked = -1;               // the number of atoms the last check_plane saw
   bigint added_at = -1;                    // the step atoms were added in this run (-1: none)

@@ -278,7 +278,7 @@ void HardsphereDomainWindow::bound_reach(double dt)
   MPI_Allreduce(mx, gmx, 2, MPI_DOUBLE, MPI_MAX, world);
   vwall = 0.0;
   for (const auto &w : base.walls)
-    if (w.vibrating()) vwall = std::max(vwall, w.sine ? w.A * w.omega : 4.0 * w.A * w.omega / M_PI);
+    vwall = std::max(vwall, w.speed_bound());
   g = norm(base.gravity);
   D = fix.reach * fix.widen * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
 }

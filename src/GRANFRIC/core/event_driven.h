@@ -104,6 +104,8 @@ struct EDWall {
   double A = 0.0, omega = 0.0;
   bool sine = false;              // true: pos + A sin(omega t) itself (contacts by safe search)
   bool vibrating() const { return A > 0.0 && omega > 0.0; }
+  // the wall's largest speed: A omega (sine), 4 A omega / pi (parabolic), 0 (static)
+  double speed_bound() const { return !vibrating() ? 0.0 : sine ? A * omega : 4.0 * A * omega / M_PI; }
   // position, velocity and acceleration at absolute time s
   void motion(double s, double &w, double &vw, double &aw) const;
 };
