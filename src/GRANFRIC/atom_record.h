@@ -17,7 +17,7 @@ namespace LAMMPS_NS {
 // An atom as a window needs it: packed on its owner, sent to other ranks in messages of
 // doubles (SIZE per atom), read there. The layout is this struct; the positions of single
 // fields in a message (AtomRecordAt) follow from it.
-// Within one time origin of the windows (an epoch, see FixHardsphereED::begin_epoch) an atom
+// Within one time origin of the windows (an epoch, see HardsphereRunState::begin_epoch) an atom
 // is the core's stored state, exactly as the core that owns it keeps it: position and velocity
 // at the atom's own time t (its last collision or kick, in epoch time), in the core's frame
 // (unwrapped since the epoch began: LAMMPS's position plus off periods), and the last partner,

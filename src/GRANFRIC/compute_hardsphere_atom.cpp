@@ -50,7 +50,7 @@ void ComputeHardsphereAtom::compute_peratom()
   for (int i = 0; i < atom->nlocal; i++) {
     const double *t = fix->atom_tally(i);
     for (int k = 0; k < NCOL; k++)
-      array_atom[i][k] = (mask[i] & groupbit) ? t[FixHardsphereED::T_COLL + k] : 0.0;
+      array_atom[i][k] = (mask[i] & groupbit) ? t[FixHardsphereED::Tally::T_COLL + k] : 0.0;
   }
 }
 

@@ -24,11 +24,8 @@
 
 #include "hardsphere_domain_window.h"
 
-#include "fix_hardsphere_ed.h"
-#include "hardsphere_gather_window.h"
 #include "hardsphere_host.h"
-#include "hardsphere_window_parts.h"
-#include "pair_hardsphere.h"
+#include "hardsphere_run_state.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -87,8 +84,8 @@ void sum_over_ranks(std::vector<T> &v, MPI_Datatype type, MPI_Comm world)
 }
 }    // namespace
 
-HardsphereDomainWindow::HardsphereDomainWindow(FixHardsphereED &f) :
-    Pointers(f.lmp), fix(f), ed(f.ed)
+HardsphereDomainWindow::HardsphereDomainWindow(HardsphereRunState &r, double reach_, bool check) :
+    Pointers(r.instance()), state(r), ed(r.ed), reach(reach_), check_windows(check)
 {
 }
 
@@ -98,33 +95,34 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   dim = domain->dimension;
   step = dt;
   received = 0;
-  base = fix.core_options();
+  base = state.core_options();
+  if (!state.core_kept_by(this)) valid = false;
+  state.core_used_by(this);
   epoch_now = new_epoch(t0);
-  T0 = fix.epoch_time(update->ntimestep - 1);
-  T1 = fix.epoch_time(update->ntimestep);
+  T0 = state.window_start();
+  T1 = state.window_end();
   bound_reach(dt);
   factor = own_factor;
   rounds = nredone = 0;
   all_widened = false;
-  kick_from.resize(fix.kicks.size());
-  for (size_t f = 0; f < fix.kicks.size(); f++) kick_from[f] = fix.kicks[f]->kick_counter();
+  kick_from = state.kick_counters();
   kplan.clear();
-  if (!fix.kicks.empty()) kplan = fix.plan_kicks(t0, dt);
+  if (!state.kicks.empty()) kplan = state.plan_kicks(t0, dt);
   make_regions(false);
   send_copies();
   simulate(dt);
   publish_histories();
   long global[5];
   bool ok = checked(global, false);
-  double *totals = fix.totals;
-  totals[FixHardsphereED::STEP_CONFLICTS] = (double) (global[0] + global[1]);
-  totals[FixHardsphereED::CONFLICTS] += totals[FixHardsphereED::STEP_CONFLICTS];
+  double *totals = state.totals;
+  totals[HardsphereRunState::STEP_CONFLICTS] = (double) (global[0] + global[1]);
+  totals[HardsphereRunState::CONFLICTS] += totals[HardsphereRunState::STEP_CONFLICTS];
   // (check no keeps a conflicting window: a wrong result, to show what the check is for)
-  if (!ok && fix.check_windows) ok = repair(dt, global[2] > 0);
-  if (!ok && fix.check_windows) {
-    for (size_t f = 0; f < fix.kicks.size(); f++) fix.kicks[f]->rewind(kick_from[f]);
-    fix.gwin->invalidate();
+  if (!ok && check_windows) ok = repair(dt, global[2] > 0);
+  if (!ok && check_windows) {
+    state.rewind_kicks(kick_from);
     valid = false;
+    widen = std::min(64.0, 2.0 * widen);
     return false;
   }
   // a rank that widened keeps its shell for the next windows and narrows it slowly while they
@@ -133,10 +131,10 @@ bool HardsphereDomainWindow::run(double t0, double dt)
   own_factor = factor > own_factor ? std::min(64.0, factor) : std::max(1.0, 0.99 * own_factor);
   commit();
   sum_statistics();
-  fix.gwin->invalidate();
   // the core is kept for the next window (it then starts at this window's end)
   valid = true;
-  fix.keep_rows(stag, smask);    // (the collisions this rank booked)
+  widen = all_widened ? std::min(64.0, 2.0 * widen) : std::max(1.0, widen * 0.99);
+  state.keep_rows(stag, smask);    // (the collisions this rank booked)
   sowned_prev.assign(sowned.begin(), sowned.end());
   return true;
 }
@@ -166,7 +164,7 @@ bool HardsphereDomainWindow::checked(long *global, bool redid)
   if (!fail) conflicts_here = compare_histories();
   long local[5] = {conflicts_here, fail ? 1 : 0, guard_failed ? 1 : 0, received, redid ? 1 : 0};
   MPI_Allreduce(local, global, 5, MPI_LONG, MPI_SUM, world);
-  fix.totals[FixHardsphereED::STEP_COMM] = (double) global[3];
+  state.totals[HardsphereRunState::STEP_COMM] = (double) global[3];
   nredone += global[4];
   blamed_here = false;
   if (global[0] == 0) return global[1] == 0;
@@ -217,18 +215,15 @@ bool HardsphereDomainWindow::repair(double dt, bool everyone)
 // as a serial run decides. A new epoch takes every atom from LAMMPS as it is.
 bool HardsphereDomainWindow::new_epoch(double t0)
 {
-  int due = fix.epoch_starts() || atom->natoms != last_natoms ? 1 : 0;
-  const double start = fix.epoch_time(update->ntimestep - 1);
+  int due = state.epoch_starts() || atom->natoms != last_natoms ? 1 : 0;
+  const double start = state.window_start();
   const hardsphere::FarWrap wrap(domain);
-  if (!due) due = fix.states_hold(nlocal, start, wrap) ? 0 : 1;
+  if (!due) due = state.atoms.states_hold(nlocal, start, state.settings.gravity, wrap) ? 0 : 1;
   MPI_Allreduce(MPI_IN_PLACE, &due, 1, MPI_INT, MPI_MAX, world);
   last_natoms = atom->natoms;
   if (!due) return false;
-  fix.begin_epoch(t0);
-  for (int i = 0; i < nlocal; i++) {
-    double *xs = fix.xstate[i];
-    for (int d = 0; d < 3; d++) xs[FixHardsphereED::XS_OFF + d] = 0.0;
-  }
+  state.begin_epoch(t0);
+  state.atoms.clear_periods(nlocal);
   return true;
 }
 
@@ -241,7 +236,8 @@ void HardsphereDomainWindow::bound_reach(double dt)
   const double *xa = nlocal > 0 ? atom->x[0] : nullptr, *va = nlocal > 0 ? atom->v[0] : nullptr;
   const double *wa = nlocal > 0 ? atom->omega[0] : nullptr;
   const double *radius = atom->radius;
-  const double q = fix.pair->shape_factor();
+  // (the largest shape factor of the types: every atom's spin energy bounded as its type's)
+  const double q = *std::max_element(base.shape.begin() + 1, base.shape.end());
   double mx[2] = {0.0, 0.0};
   for (int d = 0; d < 3; d++) {
     mybb[d] = d < dim ? INF : 0.0;    // (nothing moves in z in 2d)
@@ -280,7 +276,7 @@ void HardsphereDomainWindow::bound_reach(double dt)
   for (const auto &w : base.walls)
     vwall = std::max(vwall, w.speed_bound());
   g = norm(base.gravity);
-  D = fix.reach * fix.widen * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
+  D = reach * widen * (gmx[0] + 2.0 * vwall) * dt + 0.5 * g * dt * dt;
 }
 
 // the shell that holds every atom able to reach an owned atom when atoms travel up to D
@@ -400,7 +396,7 @@ void HardsphereDomainWindow::send_copies()
   rec.resize(sendlist.size() * NPACK);    // (about as many as the last window's: little to fill)
   send_index.assign(nlocal, -1);
   for (size_t k = 0; k < sendlist.size(); k++) {
-    fix.atom_record(sendlist[k], !epoch_now).write(&rec[k * NPACK]);
+    state.atom_record(sendlist[k], !epoch_now).write(&rec[k * NPACK]);
     send_index[sendlist[k]] = (int) k;
   }
   scounts.assign(comm->nprocs, 0);
@@ -415,11 +411,10 @@ void HardsphereDomainWindow::send_copies()
 
 // Each rank's buffer for every other rank (dsend-like: the parts for ranks in ascending order,
 // scounts doubles each) delivered: recv holds what the others sent to this rank, in rank order,
-// fix.counts and fix.displs say where each rank's part lies. Returns the doubles received.
+// rcounts and rdispls say where each rank's part lies. Returns the doubles received.
 long HardsphereDomainWindow::exchange(const std::vector<double> &send, std::vector<double> &recv)
 {
   const int nprocs = comm->nprocs;
-  std::vector<int> &rcounts = fix.counts, &rdispls = fix.displs;
   rcounts.resize(nprocs);
   rdispls.resize(nprocs);
   sdispls.resize(nprocs);
@@ -448,7 +443,7 @@ void HardsphereDomainWindow::find_copies()
   if (nlocal > 0)
     for (int p = 0; p < comm->nprocs; p++) {
       if (p == comm->me) continue;
-      for (int k = fix.displs[p]; k < fix.displs[p] + fix.counts[p]; k += NPACK) {
+      for (int k = rdispls[p]; k < rdispls[p] + rcounts[p]; k += NPACK) {
         if (!inside(R, &drecv[k + AtomRecordAt::XL], s3)) continue;
         gsrc.push_back(k);
         gshift.insert(gshift.end(), s3, s3 + 3);
@@ -509,7 +504,7 @@ void HardsphereDomainWindow::sort_by_id(std::vector<int> &atoms)
 // atom a of this window: an owned atom (a < nlocal), or a copy as its owner sent it
 AtomRecord HardsphereDomainWindow::record_of(int a) const
 {
-  if (a < nlocal) return fix.atom_record(a, !epoch_now);
+  if (a < nlocal) return state.atom_record(a, !epoch_now);
   return AtomRecord::read(&drecv[gsrc[a - nlocal]]);
 }
 
@@ -539,13 +534,13 @@ bool HardsphereDomainWindow::slot_holds(int a, int sl, int *f) const
     frame_of(a, in.off, f);
     return ed.present(sl) && in.held_by(p) && links_held(sl, f, in.partner, in.poff);
   }
-  const double *xs = fix.xstate[a];
-  frame_of(a, xs + FixHardsphereED::XS_OFF, f);
+  using XS = HardsphereAtomStates;
+  const double *xs = state.atoms.state(a);
+  frame_of(a, xs + XS::XS_OFF, f);
   return ed.present(sl) &&
-      holds_atom(p, xs + FixHardsphereED::XS_X, xs + FixHardsphereED::XS_V, xs[FixHardsphereED::XS_T],
-                 xs[FixHardsphereED::XS_TLAST], atom->omega[a], atom->radius[a], atom->rmass[a],
-                 (double) atom->type[a]) &&
-      links_held(sl, f, xs[FixHardsphereED::XS_PARTNER], xs + FixHardsphereED::XS_POFF);
+      holds_atom(p, xs + XS::XS_X, xs + XS::XS_V, xs[XS::XS_T], xs[XS::XS_TLAST], atom->omega[a],
+                 atom->radius[a], atom->rmass[a], (double) atom->type[a]) &&
+      links_held(sl, f, xs[XS::XS_PARTNER], xs + XS::XS_POFF);
 }
 
 // does slot sl have the frame f, and the last partner of the given ID (0: none) with image
@@ -611,7 +606,7 @@ bool HardsphereDomainWindow::can_keep(granfric::EDOptions &o)
     o.open[d] = true;
     o.period[d] = domain->prd[d];
   }
-  ok = ok && ed.configured_as(o, atom->ntypes, fix.law_table());
+  ok = ok && ed.configured_as(o, atom->ntypes, state.law_table());
   inslot.resize(nlocal + nghost);    // (set for every atom before use)
   if (!ok) return false;
   if (++stamp == INT32_MAX) return false;
@@ -731,7 +726,7 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o)
     o.period[d] = domain->prd[d];
   }
   set_framed();
-  fix.configure_core(o, false);
+  state.configure_core(o, false);
   const int n = nlocal + nghost, ns = n + n / 16 + 64;
   ed.resize(ns);
   stag.assign(ns, -1);
@@ -771,17 +766,17 @@ void HardsphereDomainWindow::fresh_core(granfric::EDOptions &o)
     const int poff[3] = {(int) in.poff[0], (int) in.poff[1], (int) in.poff[2]};
     ed.set_last_partner(e, partner_slot(in), poff);
   }
-  ed.set_clock(fix.epoch_clock);
+  ed.set_clock(state.epoch_clock);
   try {
     if (epoch_now)
       ed.start();
     else
       ed.start_at(T0);
   } catch (std::exception &e) {
-    fix.core_failed(e, false);
+    state.core_failed(e, false);
   }
   repredicted = n;
-  fix.totals[FixHardsphereED::QUEUE_REBUILDS] += 1.0;
+  state.totals[HardsphereRunState::QUEUE_REBUILDS] += 1.0;
 }
 
 // ------------------------------------------------ the events that matter here
@@ -808,15 +803,15 @@ void HardsphereDomainWindow::watch_events()
   }
   history.clear();
   ed.record_events(&history, watch.data());
-  if (fix.check_overlaps && keep) {
+  if (state.check_overlaps && keep) {
     // a kept core continues an exact trajectory: the once-per-run overlap check is needed
     // only if something other than this fix changed atoms a rank had written back (all
     // ranks decide alike)
     long any = 0;
     MPI_Allreduce(&owned_changed, &any, 1, MPI_LONG, MPI_SUM, world);
-    if (any == 0) fix.check_overlaps = false;
+    if (any == 0) state.check_overlaps = false;
   }
-  fix.report_overlaps(true);
+  state.report_overlaps(true);
 }
 
 // ------------------------------------------------ the window itself
@@ -829,15 +824,14 @@ bool HardsphereDomainWindow::advance()
   const double slim = D / step - 0.5 * step * g;
   s2lim = slim > 0.0 ? 0.999 * slim * slim : 0.0;
   ed.track_fast(s2lim);
-  if (!fix.kicks.empty()) {
+  if (!state.kicks.empty()) {
     kick_tags.assign(stag.begin(), stag.end());
-    fix.schedule_kicks(kplan, kick_tags, smask);
+    state.schedule_kicks(kplan, kick_tags, smask);
   }
-  fix.clog.clear();
-  ed.record_collisions(fix.want_rows ? &fix.clog : nullptr);
+  state.record_collisions();
   bool ok = true;
   try {
-    fix.last = ed.advance_to(T1);
+    state.last = ed.advance_to(T1);
   } catch (std::exception &) {
     ok = false;
   }
@@ -1000,7 +994,7 @@ int HardsphereDomainWindow::compare_histories()
   owner.resize(ncopy);
   for (int p = 0; p < comm->nprocs; p++) {
     if (p == comm->me) continue;
-    for (size_t k = fix.displs[p]; k < (size_t) (fix.displs[p] + fix.counts[p]);) {
+    for (size_t k = rdispls[p]; k < (size_t) (rdispls[p] + rcounts[p]);) {
       const long t = (long) hrecv[k];
       const int sl = slot_of_tag.get(t);
       if (sl >= 0 && widx[sl] >= 0 && widx[sl] < ncopy) {    // (a copy here)
@@ -1058,28 +1052,26 @@ void HardsphereDomainWindow::commit()
     const int e = lslot[i];
     double xe[3], off[3];
     ed.state(e, T1, xe, va + 3 * i, wa + 3 * i);
-    double *xs = fix.xstate[i];
+    const double *xs = state.atoms.state(i);
     int dimg[3] = {0, 0, 0};
     for (int d = 0; d < 3; d++) {
-      int o = (int) xs[FixHardsphereED::XS_OFF + d];
+      int o = (int) xs[HardsphereAtomStates::XS_OFF + d];
       xa[3 * i + d] = wrap.written(d, xe[d], o);
-      dimg[d] = o - (int) xs[FixHardsphereED::XS_OFF + d];
+      dimg[d] = o - (int) xs[HardsphereAtomStates::XS_OFF + d];
       off[d] = o;
     }
-    FixHardsphereED::shift_image(image[i], dimg);
+    hardsphere::shift_image(image[i], dimg);
     const int p = ed.last_partner(e);
-    fix.store_state(i, e, off, p < 0 ? 0.0 : (double) stag[p], xa + 3 * i, va + 3 * i);
-    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(e).t_last, fix.epoch_clock);
-    if (fix.atally) fix.store_tally(i, e);
+    state.take_back(i, e, off, p < 0 ? 0.0 : (double) stag[p], xa + 3 * i, va + 3 * i);
   }
-  fix.written_at = T1;
+  state.atoms.written_at = T1;
 }
 
 // ------------------------------------------------ the statistics of all ranks
 // (and the atoms predicted afresh, summed with them)
 void HardsphereDomainWindow::sum_statistics()
 {
-  granfric::EDStats &last = fix.last;
+  granfric::EDStats &last = state.last;
   const long events = last.global_events;    // (every rank processes every kick: no sum)
   std::vector<long> counts;
   std::vector<double> sums;
@@ -1093,8 +1085,8 @@ void HardsphereDomainWindow::sum_statistics()
   MPI_Allreduce(&lmax, &gmax, 1, MPI_LONG, MPI_MAX, world);
   last.max_collisions_one_particle = gmax;
   last.global_events = events;
-  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) counts[counts.size() - 2];
-  fix.totals[FixHardsphereED::STEP_COPIES] = (double) counts.back();
+  state.totals[HardsphereRunState::STEP_PREDICTED] = (double) counts[counts.size() - 2];
+  state.totals[HardsphereRunState::STEP_COPIES] = (double) counts.back();
 }
 
 double HardsphereDomainWindow::memory_usage() const

@@ -26,14 +26,16 @@
 
 namespace LAMMPS_NS {
 
-class FixHardsphereED;
+class HardsphereRunState;
 
 class HardsphereDomainWindow : protected Pointers {
  protected:
   GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
 
  public:
-  explicit HardsphereDomainWindow(FixHardsphereED &fix);
+  // reach: the safety factor on the path bound v_max dt (keyword reach); check: a window with
+  // a conflict is repaired or redone (keyword check yes), else kept
+  HardsphereDomainWindow(HardsphereRunState &run, double reach, bool check);
   // one window [t0, t0 + dt) of the owned atoms, conflicts repaired among the ranks involved;
   // false: a conflict not repaired (or not checked for), nothing was changed (the caller redoes
   // the window gathered)
@@ -42,14 +44,14 @@ class HardsphereDomainWindow : protected Pointers {
   // the ranks and rounds, the same on every rank)
   int repair_rounds() const { return rounds; }
   long windows_redone() const { return nredone; }
-  // a guard failure made every rank widen in the last window's repair
-  bool guard_widened() const { return all_widened; }
+  // the adaptive factor on the reach (>= 1; kept in restart files): it doubles after a
+  // window whose guard failed (kicks or walls made atoms faster than the bound) or that was
+  // not repaired, and narrows slowly while windows pass; the same on every rank (the shells of
+  // the ranks in a conflict widen on their own, see own_factor)
+  double reach_factor() const { return widen; }
+  void set_reach_factor(double f) { widen = f; }
   // the most repair rounds of one window (the shell of a rank widens by 2^rounds)
   static constexpr int MAX_ROUNDS = 12;
-  // the core no longer holds what the last window left (something else used or changed it)
-  void invalidate() { valid = false; }
-  // a new run keeps the core only without vibrating walls (see FixHardsphereED::setup)
-  bool kept() const { return valid; }
   double memory_usage() const;
 
  private:
@@ -61,8 +63,11 @@ class HardsphereDomainWindow : protected Pointers {
     bool widened;     // the rank widened its shell in this round of a repair
   };
 
-  FixHardsphereED &fix;
+  HardsphereRunState &state;    // (the fix's)
   granfric::EventDriven &ed;
+  const double reach;
+  const bool check_windows;
+  double widen = 1.0;
 
   // ---- the window's stages, in order
   bool new_epoch(double t0);
@@ -133,7 +138,7 @@ class HardsphereDomainWindow : protected Pointers {
   std::vector<tagint> kick_tags; // the slots' atom IDs for the kicks
 
   // ---- kept from one window to the next
-  bool valid = false;
+  bool valid = false;            // (if the run's state says this window left the core)
   bigint last_natoms = -1;
   double own_factor = 1.0;       // this rank's shell factor at the start of a window
   double grid_lo[3] = {0, 0, 0}, grid_hi[3] = {0, 0, 0};    // the kept cell grid (open dims)
@@ -168,6 +173,8 @@ class HardsphereDomainWindow : protected Pointers {
   // atom's place in sendlist (by atom, -1: not sent), where its history starts in the window's
   // own histories; doubles for each rank and where they start
   std::vector<int> to_rank, to_start, to_dest, send_index, scounts, sdispls;
+  // where each rank's part of the last received buffer lies (exchange)
+  std::vector<int> rcounts, rdispls;
   std::vector<size_t> hist_at;
 };
 

@@ -6,9 +6,8 @@
 
 #include "hardsphere_gather_window.h"
 
-#include "fix_hardsphere_ed.h"
 #include "hardsphere_host.h"
-#include "pair_hardsphere.h"
+#include "hardsphere_run_state.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -24,28 +23,29 @@ using namespace LAMMPS_NS;
 
 static constexpr int NPACK = AtomRecordAt::SIZE;    // (doubles per atom in a message)
 
-HardsphereGatherWindow::HardsphereGatherWindow(FixHardsphereED &f) :
-    Pointers(f.lmp), fix(f), ed(f.ed)
+HardsphereGatherWindow::HardsphereGatherWindow(HardsphereRunState &r) :
+    Pointers(r.instance()), state(r), ed(r.ed)
 {
 }
 
 // (redo: the window again after a domain window had a conflict; the atoms come from their
-// stored states, see FixHardsphereED::xstate)
+// stored states, see HardsphereAtomStates)
 void HardsphereGatherWindow::run(double t0, double dt, bool redo)
 {
   // (the stored states hold from the second window of an epoch on)
-  const bool exact = redo && fix.epoch_step != update->ntimestep - 1;
+  const bool exact = redo && state.epoch_step != update->ntimestep - 1;
   gather(exact);
   order_by_id();
   for (int d = 0; d < 3; d++) wper[d] = domain->periodicity[d] ? domain->prd[d] : 0.0;
-  const double T0 = fix.epoch_time(update->ntimestep - 1);
-  const bool epoch = !exact && (redo || fix.epoch_starts() || !can_reuse(T0));
-  if (epoch) fix.begin_epoch(t0);    // (again after a domain window began it: the same)
+  const double T0 = state.window_start();
+  const bool epoch = !exact && (redo || state.epoch_starts() || !can_reuse(T0));
+  if (epoch) state.begin_epoch(t0);    // (again after a domain window began it: the same)
   if (epoch || exact)
     fresh_core(exact);
   else
-    fix.check_overlaps = false;
-  const double T1 = fix.epoch_time(update->ntimestep);
+    state.check_overlaps = false;
+  state.core_used_by(this);
+  const double T1 = state.window_end();
   schedule_kicks(t0, dt);
   advance(T1);
   take_back(T1);
@@ -54,7 +54,7 @@ void HardsphereGatherWindow::run(double t0, double dt, bool redo)
 // atom k of the gathered system: on one rank the atom arrays are the system, read in place
 AtomRecord HardsphereGatherWindow::record(int k) const
 {
-  return comm->nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : fix.atom_record(k, false);
+  return comm->nprocs > 1 ? AtomRecord::read(&recvbuf[(size_t) k * NPACK]) : state.atom_record(k, false);
 }
 
 // On several ranks every rank packs its atoms and gathers everybody's. On one rank the atom
@@ -64,15 +64,35 @@ void HardsphereGatherWindow::gather(bool exact)
   const int nlocal = atom->nlocal, nprocs = comm->nprocs;
   int total = nlocal * NPACK;
   if (nprocs == 1) {
-    fix.displs.assign(1, 0);
+    displs.assign(1, 0);
   } else {
     sendbuf.resize((size_t) nlocal * NPACK);
-    for (int i = 0; i < nlocal; i++) fix.atom_record(i, exact).write(&sendbuf[(size_t) i * NPACK]);
-    total = fix.allgather(sendbuf, recvbuf);
+    for (int i = 0; i < nlocal; i++) state.atom_record(i, exact).write(&sendbuf[(size_t) i * NPACK]);
+    total = allgather(sendbuf, recvbuf);
   }
   ntotal = total / NPACK;
   // core particle s is this rank's atom order[s] - myfirst if that lies in [0, nlocal)
-  myfirst = fix.displs[comm->me] / NPACK;
+  myfirst = displs[comm->me] / NPACK;
+}
+
+// every rank's send buffer, concatenated in rank order into recv (counts and displs say where
+// each rank's part lies); the doubles received are counted; returns the total
+int HardsphereGatherWindow::allgather(const std::vector<double> &send, std::vector<double> &recv)
+{
+  const int nprocs = comm->nprocs;
+  counts.resize(nprocs);
+  displs.resize(nprocs);
+  int mysize = (int) send.size(), total = 0;
+  MPI_Allgather(&mysize, 1, MPI_INT, counts.data(), 1, MPI_INT, world);
+  for (int p = 0; p < nprocs; p++) {
+    displs[p] = total;
+    total += counts[p];
+  }
+  recv.resize(total);
+  MPI_Allgatherv(send.data(), mysize, MPI_DOUBLE, recv.data(), counts.data(), displs.data(),
+                 MPI_DOUBLE, world);
+  state.totals[HardsphereRunState::STEP_COMM] += (double) total * (nprocs - 1);
+  return total;
 }
 
 // order by atom ID; LAMMPS changes the storage order only when it reneighbors, so the last
@@ -107,7 +127,7 @@ void HardsphereGatherWindow::order_by_id()
 // recomputed from the core, with the same arithmetic, rather than stored.
 bool HardsphereGatherWindow::can_reuse(double T0)
 {
-  bool reuse = valid && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
+  bool reuse = valid && state.core_kept_by(this) && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
       (int) offset.size() == noff * ntotal;
   const hardsphere::FarWrap wrap(domain);
   for (int s = 0; reuse && s < ntotal; s++) {
@@ -165,7 +185,7 @@ void HardsphereGatherWindow::written_state(int s, double t, double *w) const
 // epoch from LAMMPS's atoms, else from their stored states (exact), which it continues
 void HardsphereGatherWindow::fresh_core(bool exact)
 {
-  fix.configure_core(fix.core_options());
+  state.configure_core(state.core_options());
   ed.resize(ntotal);
   noff = domain->dimension;
   offset.assign((size_t) ntotal * noff, 0);
@@ -187,32 +207,32 @@ void HardsphereGatherWindow::fresh_core(bool exact)
   }
   same_atoms = true;
   ed.set_accounting({keys.data(), nullptr});
-  ed.set_clock(fix.epoch_clock);
+  ed.set_clock(state.epoch_clock);
   if (exact) {
     try {
-      ed.start_at(fix.epoch_time(update->ntimestep - 1));
+      ed.start_at(state.window_start());
     } catch (std::exception &e) {
-      fix.core_failed(e, true);
+      state.core_failed(e, true);
     }
   } else {
-    fix.start_core(true);
-    fix.report_overlaps(false);
+    state.start_core(true);
+    state.report_overlaps(false);
   }
-  fix.totals[FixHardsphereED::QUEUE_REBUILDS] += 1.0;
-  fix.totals[FixHardsphereED::STEP_PREDICTED] = (double) ntotal;
+  state.totals[HardsphereRunState::QUEUE_REBUILDS] += 1.0;
+  state.totals[HardsphereRunState::STEP_PREDICTED] = (double) ntotal;
 }
 
 // kicks of fix hardsphere/kick at their exact times inside the window (and the masks the
 // collision rows report)
 void HardsphereGatherWindow::schedule_kicks(double t0, double dt)
 {
-  if (fix.kicks.empty() && !fix.want_rows) return;
+  if (state.kicks.empty() && !state.want_rows) return;
   cmask.resize(ntotal);
   for (int s = 0; s < ntotal; s++) {
     const int k = order[s];
     cmask[s] = comm->nprocs > 1 ? (int) recvbuf[(size_t) k * NPACK + AtomRecordAt::MASK] : atom->mask[k];
   }
-  if (!fix.kicks.empty()) fix.schedule_kicks(fix.plan_kicks(t0, dt), otags, cmask);
+  if (!state.kicks.empty()) state.schedule_kicks(state.plan_kicks(t0, dt), otags, cmask);
 }
 
 // the window itself; a core that fails stops the run with what went wrong
@@ -220,10 +240,9 @@ void HardsphereGatherWindow::advance(double T1)
 {
   ed.set_accounting({keys.data(), nullptr});    // (keys: the atom IDs)
   ed.record_events(nullptr);
-  fix.clog.clear();
-  ed.record_collisions(fix.want_rows ? &fix.clog : nullptr);
+  state.record_collisions();
   try {
-    fix.last = ed.advance_to(T1);
+    state.last = ed.advance_to(T1);
   } catch (granfric::EventCapError &e) {
     valid = false;
     if (e.kind == granfric::EventCapError::CROSSINGS)
@@ -234,39 +253,41 @@ void HardsphereGatherWindow::advance(double T1)
                  "kappa_s, or does an atom start much faster than the others?)",
                  e.n, update->ntimestep, e.n - 1, (tagint) otags[e.i], e.speed);
     bool creating = false;
-    for (const auto &law : fix.law_table()) creating = creating || law.can_create_energy();
-    const std::string partner = e.j < 0 ? host::format("fix hardsphere/wall {}", fix.walls[-1 - e.j]->wall_id())
+    for (const auto &law : state.law_table()) creating = creating || law.can_create_energy();
+    const std::string partner = e.j < 0 ? host::format("fix hardsphere/wall {}", state.walls[-1 - e.j]->wall_id())
                                         : host::format("atom {}", (tagint) otags[e.j]);
-    const std::string collapse = fix.tc > 0.0
-        ? host::format("inelastic collapse despite the TC model (tc {}): raise tc or maxevents", fix.tc)
+    const double tc = state.settings.tc;
+    const std::string collapse = tc > 0.0
+        ? host::format("inelastic collapse despite the TC model (tc {}): raise tc or maxevents", tc)
         : std::string("inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
     error->all(FLERR,
                "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
                "last one with {} at time {}: {}",
-               (tagint) otags[e.i], e.n, update->ntimestep, fix.maxevents, partner,
-               fix.epoch_clock + e.t,
+               (tagint) otags[e.i], e.n, update->ntimestep, state.settings.maxevents, partner,
+               state.epoch_clock + e.t,
                creating ? "a collision law here can create energy (hardsphere/jz with kappa_d > "
                           "kappa_s), which can run away; use kappa_d <= kappa_s, or raise "
                           "maxevents if the energy stays bounded"
                         : collapse);
   } catch (std::exception &e) {
-    fix.core_failed(e, true);
+    state.core_failed(e, true);
   }
   // (every rank ran every collision: rank 0 keeps the rows)
-  if (comm->me != 0) fix.clog.clear();
-  fix.keep_rows(otags, cmask);
+  if (comm->me != 0) state.clog.clear();
+  state.keep_rows(otags, cmask);
 }
 
 // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the
 // periods LAMMPS wrapped (pbc() at reneighboring keeps doing that, with the image flags). An
 // atom more than half a box outside (a step longer than a box crossing) is wrapped here and its
 // image flags follow. The same arithmetic on every rank, and as written_state's. For windows
-// on several ranks each atom keeps its stored state (FixHardsphereED::xstate).
+// on several ranks each atom keeps its stored state (HardsphereAtomStates).
 void HardsphereGatherWindow::take_back(double T1)
 {
   const int nlocal = atom->nlocal;
   const hardsphere::FarWrap wrap(domain);
   bool offsets_full = false;    // an offset left its range: the next window starts afresh
+  const bool per_atom = state.atoms.per_atom() > 0;    // (read once)
   for (int s = 0; s < ntotal; s++) {
     if (s + AHEAD < ntotal) ed.prefetch_particle(s + AHEAD);
     const int i = order[s] - myfirst;    // its owned atom, or none
@@ -282,21 +303,24 @@ void HardsphereGatherWindow::take_back(double T1)
       stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off));
     }
     if (i < 0 || i >= nlocal) continue;
-    if (fix.atally) fix.store_tally(i, s);
-    FixHardsphereED::shift_image(atom->image[i], dimg);
+    hardsphere::shift_image(atom->image[i], dimg);
     memcpy(atom->x[i], w, 3 * sizeof(double));
     memcpy(atom->v[i], w + 3, 3 * sizeof(double));
     memcpy(atom->omega[i], w + 6, 3 * sizeof(double));
-    if (fix.tlast) fix.set_tlast(i, std::as_const(ed).particle(s).t_last, fix.epoch_clock);
-    if (fix.xstate) {
-      const double off[3] = {(double) (noff > 0 ? stored[0] : 0), (double) (noff > 1 ? stored[1] : 0),
-                             (double) (noff > 2 ? stored[2] : 0)};
-      const int p = ed.last_partner(s);
-      fix.store_state(i, s, off, p < 0 ? 0.0 : (double) otags[p], w, w + 3);
-    }
+    if (per_atom) keep_atom(i, s, stored, w);
   }
   valid = !offsets_full;
-  if (offsets_full) fix.epoch_due = true;
+  if (offsets_full) state.epoch_due = true;
+}
+
+// what the fix keeps of owned atom i, core particle s, at the window's end (with its periods
+// stored and its x and v as written, w): its stored state, last collision time and tallies
+void HardsphereGatherWindow::keep_atom(int i, int s, const int8_t *stored, const double *w)
+{
+  double off[3] = {0.0, 0.0, 0.0};
+  for (int d = 0; d < noff; d++) off[d] = stored[d];
+  const int p = state.atoms.stored() ? ed.last_partner(s) : -1;
+  state.take_back(i, s, off, p < 0 ? 0.0 : (double) otags[p], w, w + 3);
 }
 
 double HardsphereGatherWindow::memory_usage() const

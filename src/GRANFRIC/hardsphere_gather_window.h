@@ -25,7 +25,7 @@
 
 namespace LAMMPS_NS {
 
-class FixHardsphereED;
+class HardsphereRunState;
 namespace hardsphere {
   class FarWrap;
 }
@@ -35,20 +35,18 @@ class HardsphereGatherWindow : protected Pointers {
   GRANFRIC_HOST_ERROR    // (under LIGGGHTS: LAMMPS's error calls)
 
  public:
-  explicit HardsphereGatherWindow(FixHardsphereED &fix);
+  explicit HardsphereGatherWindow(HardsphereRunState &run);
   // one window [t0, t0 + dt) of the whole system (redo: after a domain window's conflict)
   void run(double t0, double dt, bool redo);
-  // the core no longer holds what the last window left (something else used or changed it)
-  void invalidate() { valid = false; }
-  bool kept() const { return valid; }
   double memory_usage() const;
 
  private:
-  FixHardsphereED &fix;
+  HardsphereRunState &state;    // (the fix's)
   granfric::EventDriven &ed;
 
   // ---- the window's stages, in order
   void gather(bool exact);
+  int allgather(const std::vector<double> &send, std::vector<double> &recv);
   void order_by_id();
   bool can_reuse(double T0);
   void fresh_core(bool exact);
@@ -60,12 +58,14 @@ class HardsphereGatherWindow : protected Pointers {
   AtomRecord record(int k) const;    // atom k of the gathered system
   bool reusable(int s, double T0, const hardsphere::FarWrap &wrap);
   void written_state(int s, double t, double *w) const;
+  void keep_atom(int i, int s, const int8_t *stored, const double *w);
 
   int ntotal = 0;                 // atoms in the system
   int myfirst = 0;                // index of this rank's first atom in the gathered system
 
   // ---- kept from one window to the next
-  bool valid = false;             // the core continues the last window
+  bool valid = false;             // the core continues the last window (if the run's state
+                                  // says this window left it)
   std::vector<long> keys;         // the core particles' atom IDs (EDAccounting::key)
   std::vector<int> order;         // index in recvbuf (or the atom arrays) by ID
   std::vector<tagint> otags;      // the IDs in that order (= the core's order)
@@ -84,6 +84,7 @@ class HardsphereGatherWindow : protected Pointers {
   // ---- scratch
   std::vector<double> sendbuf, recvbuf;
   std::vector<int> cmask;         // atom masks in core order
+  std::vector<int> counts, displs;    // where each rank's part of recvbuf lies
 };
 
 }    // namespace LAMMPS_NS

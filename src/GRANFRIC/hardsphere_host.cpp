@@ -18,6 +18,15 @@
 namespace LAMMPS_NS {
 namespace hardsphere {
 
+  void wrap_image(imageint &image, const int *dimg)
+  {
+    imageint xb = (image & IMGMASK) - IMGMAX + dimg[0];
+    imageint yb = (image >> IMGBITS & IMGMASK) - IMGMAX + dimg[1];
+    imageint zb = (image >> IMG2BITS) - IMGMAX + dimg[2];
+    image = ((imageint) (xb + IMGMAX) & IMGMASK) | (((imageint) (yb + IMGMAX) & IMGMASK) << IMGBITS) |
+        (((imageint) (zb + IMGMAX) & IMGMASK) << IMG2BITS);
+  }
+
   double time_at_step(const Update *update, bigint step)
   {
     return update->atime + (double) (step - update->atimestep) * update->dt;

@@ -102,6 +102,14 @@ namespace hardsphere {
     bool periodic[3];
   };
 
+  // the image flags of an atom that a window wrapped by dimg periods (most are not: inline
+  // test)
+  void wrap_image(imageint &image, const int *dimg);
+  inline void shift_image(imageint &image, const int *dimg)
+  {
+    if (dimg[0] | dimg[1] | dimg[2]) wrap_image(image, dimg);
+  }
+
 }    // namespace hardsphere
 }    // namespace LAMMPS_NS
 

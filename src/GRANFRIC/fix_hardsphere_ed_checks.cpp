@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+/* ----------------------------------------------------------------------
+   GRANFRIC: fix hardsphere/ed, the checks at the start of a run: inputs that the windows
+   cannot follow exactly, or that would give a wrong result without a word, end here with an
+   error that names the cause (see fix_hardsphere_ed.h)
+------------------------------------------------------------------------- */
+
+#include "fix_hardsphere_ed.h"
+
+#include "hardsphere_host.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "input.h"
+#include "modify.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+// the lowest ID of the atoms (over all ranks) for which bad(local index) holds, or NOATOM
+tagint FixHardsphereED::first_atom(const std::function<bool(int)> &bad) const
+{
+  tagint who = NOATOM;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (bad(i)) who = std::min(who, atom->tag[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &who, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  return who;
+}
+
+// value(local index) of atom who, from the rank that owns it (collective)
+double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> &value) const
+{
+  double v = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->tag[i] == who) v = value(i);
+  MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_DOUBLE, MPI_SUM, world);
+  return v;
+}
+
+// Absurd speeds, accelerations, steps and wall temperatures end at the start of the run, not
+// after the event cap's maxevents x atoms cell crossings (minutes): the atoms' paths in one
+// step (speed, gravity, the speed a vibrating or thermal wall gives) summed over the atoms, in
+// the largest diameters (the narrowest cells), against that cap; and thermal walls under
+// gravity (check_thermal_walls).
+void FixHardsphereED::check_scales() const
+{
+  const double *gravity = run->settings.gravity;
+  const long maxevents = run->settings.maxevents;
+  // (over all atoms: the summed speed, the largest mass, radius and inverse mass)
+  double sum = 0.0, mx[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < atom->nlocal; i++) {
+    const double *v = atom->v[i];
+    sum += std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    mx[0] = std::max(mx[0], atom->rmass[i]);
+    mx[1] = std::max(mx[1], atom->radius[i]);
+    mx[2] = std::max(mx[2], 1.0 / atom->rmass[i]);
+  }
+  MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPI_DOUBLE, MPI_MAX, world);
+  const double n = (double) atom->natoms;
+  if (n == 0.0) return;
+  check_thermal_walls(mx[0], mx[1]);
+  const double dt = update->dt, g = std::hypot(gravity[0], gravity[1], gravity[2]);
+  double wmax = 0.0, tmax = 0.0;    // the fastest wall's speed, the hottest wall's temperature
+  for (auto *w : run->walls) {
+    const granfric::EDWall e = w->geometry();
+    wmax = std::max(wmax, e.speed_bound());
+    tmax = std::max(tmax, e.T);
+  }
+  const double vwall = std::max(2.0 * wmax, tmax > 0.0 ? 5.0 * std::sqrt(tmax * mx[2]) : 0.0);
+  const double mean = (sum / n + vwall) * dt + 0.5 * g * dt * dt;    // per atom and step
+  if (!(mean / (2.0 * mx[1]) <= (double) maxevents))
+    error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
+               "average (mean speed {:.3g}, {:.3g} from walls that vibrate or are thermal, gravity "
+               "{:.3g}, timestep {:.3g}), "
+               "more cells than the event cap maxevents = {} allows each atom in a step: lower "
+               "the speeds, the walls' speed or temperature, gravity or the timestep", mean / (2.0 * mx[1]),
+               sum / n, vwall, g, dt, maxevents);
+}
+
+// A thermal wall under gravity toward it holds the grains it re-emits at rest (T = 0) or
+// nearly (they hop less than a millionth of a diameter high, or maxevents times and more per
+// step): refused (mmax, amax: the heaviest mass, the largest radius)
+void FixHardsphereED::check_thermal_walls(double mmax, double amax) const
+{
+  const double *gravity = run->settings.gravity;
+  const long maxevents = run->settings.maxevents;
+  const double dt = update->dt;
+  for (auto *w : run->walls) {
+    const granfric::EDWall e = w->geometry();
+    const double toward = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
+    if (e.T < 0.0 || !(toward > 0.0)) continue;
+    // a grain re-emitted at T hops for about 2 sqrt(T/m)/g, kT/(m g) high
+    const double hop = 2.0 * std::sqrt(e.T / mmax) / toward, height = e.T / (mmax * toward);
+    if (hop * maxevents > dt && height > 1e-6 * 2.0 * amax) continue;
+    const std::string why = e.T == 0.0
+        ? std::string("the grains it re-emits stay at rest on it")
+        : host::format("a grain of mass {} it re-emits hops {:.3g} diameters high, for {:.3g} (about {:.3g} "
+                       "times per step of {}): it stays practically at rest on the wall", mmax,
+                       height / (2.0 * amax), hop, dt / hop, dt);
+    error->all(FLERR, "Fix hardsphere/wall {} (thermal at T = {}) under gravity {} toward it: {}, "
+               "which event-driven motion can only follow by colliding without end. Give it a "
+               "temperature at which the grains hop at least a millionth of a diameter high and "
+               "for longer than a step / maxevents = {:.3g}", w->wall_id(),
+               e.T * force->mvv2e / force->boltz, toward, why, dt / maxevents);
+  }
+}
+
+// rerun computes from snapshots, between which hard particles collide: the collisions (their
+// counts, the energy they dissipate, the collisional part of the pressure) cannot be had from
+// them, and the run would report none without a word
+void FixHardsphereED::refuse_rerun() const
+{
+  const char *command = host::running_command(input);
+  if (command && strcmp(command, "rerun") == 0)
+    error->all(FLERR, "Fix hardsphere/ed {} cannot be used with rerun: hard-sphere collisions "
+               "happen between the snapshots, so neither their counts nor the collisional part "
+               "of the pressure can be computed from them (unfix {} to evaluate computes of "
+               "single configurations, such as compute hardsphere/temp; average the pressure in "
+               "the run itself)", id, id);
+}
+
+// What acts on the atoms through forces has no effect on hard particles, which move only by
+// free flight, gravity, collisions, walls and kicks: a fix that adds or changes forces (fix
+// viscous, langevin, addforce, spring/self, freeze, setforce, ...), or pair exclusions (every
+// pair of hard particles collides). Warned, not refused: such a fix may be meant for other
+// output, and it changes nothing here.
+void FixHardsphereED::warn_ignored_inputs() const
+{
+  if (comm->me != 0) return;
+  for (int k = 0; k < modify->nfix; k++) {
+    const Fix *f = modify->fix[k];
+    if (f == this || utils::strmatch(f->style, "^hardsphere/") || utils::strmatch(f->style, "^enforce2d")) continue;
+    if (modify->fmask[k] & POST_FORCE)
+      error->warning(FLERR, "Fix {} ({}) acts through forces, which the hard particles of fix "
+                     "hardsphere/ed {} do not feel: it has no effect on their motion (they move "
+                     "by free flight, the gravity keyword, collisions, fix hardsphere/wall and fix "
+                     "hardsphere/kick)", f->id, f->style, id);
+  }
+  if (host::pairs_excluded(neighbor))
+    error->warning(FLERR, "neigh_modify exclude has no effect on fix hardsphere/ed {}: every pair "
+                   "of hard particles collides", id);
+}
+
+// In 2d the core moves discs in the plane z = 0 and spins them about z: an atom off that plane
+// (set ... z, fix deposit or pour with a region of some thickness in z), moving in z or
+// spinning about x or y would collide as a sphere in 3d. Checked at every run's start and when
+// the number of atoms changed (atoms added during the run).
+void FixHardsphereED::check_plane()
+{
+  plane_checked = atom->natoms;
+  if (domain->dimension != 2) return;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  const tagint who = first_atom([&](int i) {
+    return x[i][2] != 0.0 || v[i][2] != 0.0 || omega[i][0] != 0.0 || omega[i][1] != 0.0;
+  });
+  if (who == NOATOM) return;
+  double at[4];    // (z, vz, omega_x, omega_y of atom who)
+  for (int d = 0; d < 4; d++)
+    at[d] = atom_value(who, [&](int i) { return d == 0 ? x[i][2] : d == 1 ? v[i][2] : omega[i][d - 2]; });
+  error->all(FLERR, "Fix hardsphere/ed: atom {} is not a disc in the plane of the 2d simulation "
+             "(z = {}, vz = {}, omega = ({}, {}, .)): every atom must lie at z = 0 with vz = 0 "
+             "and spin about z only (the set and velocity commands set them; fix deposit and "
+             "fix pour need a region with z from 0 to 0 in 2d)", who, at[0], at[1], at[2], at[3]);
+}
+
+// a lower wall at or above an upper wall of the same dimension leaves no room between them
+void FixHardsphereED::check_walls_cross() const
+{
+  for (auto *lo : run->walls)
+    for (auto *hi : run->walls) {
+      const granfric::EDWall a = lo->geometry(), b = hi->geometry();
+      if (a.dim != b.dim || a.side > 0 || b.side < 0 || a.pos + a.A < b.pos) continue;
+      error->all(FLERR, "Fix hardsphere/wall {} ({} at {}{}) is not below fix hardsphere/wall {} "
+                 "({} at {}): the lower wall must lie below the upper one", lo->wall_id(), lo->face(),
+                 a.pos, a.A > 0.0 ? host::format(" + amplitude {}", a.A) : "", hi->wall_id(), hi->face(),
+                 b.pos);
+    }
+}
+
+// every box length at least the largest diameter (the cells of the core are that wide); the
+// error names an atom of that diameter
+void FixHardsphereED::check_box_fits_atoms() const
+{
+  double amax = 0.0;
+  for (int i = 0; i < atom->nlocal; i++) amax = std::max(amax, atom->radius[i]);
+  MPI_Allreduce(MPI_IN_PLACE, &amax, 1, MPI_DOUBLE, MPI_MAX, world);
+  for (int d = 0; d < domain->dimension; d++) {
+    if (domain->prd[d] >= 2.0 * amax * (1.0 + 1e-10)) continue;
+    const tagint who = first_atom([&](int i) { return atom->radius[i] == amax; });
+    error->all(FLERR, "Fix hardsphere/ed: atom {} has diameter {}, longer than the box in {} ({} "
+               "from {} to {}): every box length must be at least the largest diameter", who,
+               2.0 * amax, "xyz"[d], domain->prd[d], domain->boxlo[d], domain->boxhi[d]);
+  }
+}
+
+// no atom reaches behind a wall at the start of the run (its center at least its radius from
+// the plane, on the inner side, up to rounding); the error names the atom with the lowest ID
+void FixHardsphereED::check_atoms_between_walls() const
+{
+  const double t = window_start_time() + update->dt;    // (the time the next window starts)
+  for (auto *w : run->walls) {
+    const granfric::EDWall g = w->geometry();
+    double p, vw, aw;
+    g.motion(t, p, vw, aw);
+    // (a margin for rounding: 1e-9 of the diameter, 1e-12 of the wall's coordinate)
+    const tagint who = first_atom([&](int i) {
+      const double a = atom->radius[i], gap = g.side * (p - atom->x[i][g.dim]);
+      return gap < a - 2e-9 * a - 1e-12 * std::fabs(p);
+    });
+    if (who == NOATOM) continue;
+    double at[4];    // (position and radius of atom who)
+    for (int d = 0; d < 4; d++)
+      at[d] = atom_value(who, [&](int i) { return d < 3 ? atom->x[i][d] : atom->radius[i]; });
+    error->all(FLERR, "Fix hardsphere/ed: atom {} at ({}, {}, {}) with radius {} reaches behind "
+               "fix hardsphere/wall {} ({} at {}): every atom must start between the walls, "
+               "at least its radius away from each", who, at[0], at[1], at[2], at[3], w->wall_id(),
+               w->face(), p);
+  }
+}
