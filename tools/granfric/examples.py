@@ -8,7 +8,10 @@ log.DDMonYY.NAME.g++.NP (NP MPI ranks), next to the input.
 
 regenerates all of them (the old ones of each example are removed; the one machine-specific
 line, the directory LAMMPS loaded the plugin from, is written as <build>/plugins). compare()
-checks a new log against a reference the way tools/tests/test_examples.py does.
+checks a new log against a reference the way tools/tests/test_examples.py does, within the
+tolerances of two realisations of the same gas; differences_as_printed() checks that a serial
+run reproduces the serial reference log value by value, as it does with the build (compiler
+and flags) that wrote it.
 """
 import glob
 import os
@@ -122,6 +125,26 @@ def compare(ref, new, tol=None, exact=EXACT):
             if dev[i] > rtol:
                 bad.append(f"block {k} {c} step {steps[i]:.0f}: {y[i]!r} vs {x[i]!r} "
                            f"({dev[i]:.3g} of the column's scale, more than {rtol})")
+    return bad
+
+
+def differences_as_printed(ref, new):
+    """Differences between the thermo output of two logs value by value, as printed (empty
+    list: every row of every block is the same): what a serial rerun of the build that wrote
+    the reference gives."""
+    a, b = lammpslog.read_thermo_blocks(ref), lammpslog.read_thermo_blocks(new)
+    if len(a) != len(b):
+        return [f"{len(b)} thermo blocks, the reference has {len(a)}"]
+    bad = []
+    for k, ((ca, da), (cb, db)) in enumerate(zip(a, b)):
+        if ca != cb or da.shape != db.shape:
+            bad.append(f"block {k}: other columns or rows than the reference's")
+            continue
+        rows, cols = np.nonzero(da != db)
+        if len(rows):
+            i, j = rows[0], cols[0]
+            bad.append(f"block {k} {ca[j]} step {da[i, 0]:.0f}: {db[i, j]!r} vs {da[i, j]!r} "
+                       f"(the first of {len(rows)} values that differ)")
     return bad
 
 

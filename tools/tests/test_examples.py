@@ -6,14 +6,16 @@ columns and steps; the first row of the run (the initial state) to 1e-10; later 
 per-column tolerances of granfric.examples.TOL. Those come from measurement: 2.5 times the
 largest deviation seen between 1 and 2 ranks or between two seeds, because the hard-sphere gas
 is chaotic and another build or rank count follows another trajectory after a few collisions
-per particle (a rerun of the same build on 1 rank is identical bit for bit). A changed
+per particle. A rerun of the same build on 1 rank is identical bit for bit: its every printed
+value must equal the serial log's, so a log made before a change that moved trajectories
+fails (regenerate it with tools/regenerate-example-logs in the same commit). A changed
 restitution coefficient must make the comparison fail, and each example README must show the
 command of its reference logs."""
 import os
 
 import pytest
 
-from granfric import examples
+from granfric import examples, lammpslog
 
 CASES = [(e, np) for e in examples.SHORT for np in examples.RANKS]
 
@@ -25,6 +27,12 @@ def test_example_matches_its_reference_log(entry, np, tmp_path):
     new = examples.run(entry, np, str(tmp_path), "log.new")
     bad = examples.compare(ref, new, examples.TOL[entry[2]])
     assert not bad, "\n".join(bad)
+    if np == 1:
+        # (a serial rerun of the build that wrote the log is the same trajectory: a stale log,
+        # made before a change that moved trajectories, fails here)
+        stale = examples.differences_as_printed(ref, new)
+        assert not stale, "the serial reference log is not this build's (tools/regenerate-example-logs):\n" + \
+            "\n".join(stale)
 
 
 # restitution changes that a run must not pass for: smaller than the paper scans' steps
@@ -55,3 +63,20 @@ def test_example_readme_shows_the_reference_command(entry, np):
     with open(os.path.join(examples.EXAMPLES, entry[0], "README.md")) as f:
         readme = f.read()
     assert examples.command(entry, np, os.path.basename(ref)) in readme
+
+
+def test_a_changed_printed_digit_fails_the_serial_check(tmp_path):
+    # the serial check compares every printed value: one digit of the last row is enough
+    ref = examples.reference(examples.SHORT[0], 1)
+    with open(ref) as f:
+        lines = f.read().split("\n")
+    _, data = lammpslog.read_thermo_blocks(ref)[-1]
+    step = f"{data[-1, 0]:.0f}"
+    at = max(i for i, l in enumerate(lines) if l.split()[:1] == [step])
+    words = lines[at].split()
+    words[-1] = words[-1][:-1] + ("2" if words[-1][-1] == "1" else "1")
+    lines[at] = " ".join(words)
+    new = tmp_path / "log.changed"
+    new.write_text("\n".join(lines))
+    assert examples.differences_as_printed(ref, str(new))
+    assert not examples.differences_as_printed(ref, ref)
