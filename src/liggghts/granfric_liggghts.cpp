@@ -26,14 +26,16 @@ using FixTable = std::map<std::string, Fix *(*) (LAMMPS *, int, char **)>;
 using ComputeTable = std::map<std::string, Compute *(*) (LAMMPS *, int, int, char **)>;
 
 /* ----------------------------------------------------------------------
-   The tables of fix and compute styles of LIGGGHTS's Modify, which are private.
+   private_style_tables(modify): the tables of fix and compute styles of LIGGGHTS's Modify,
+   which are private; with Reach and its two tags just before it, the only code that reaches a
+   private member of LIGGGHTS.
    Why: LIGGGHTS 3.8 has no plugin interface and no call that adds a style; its styles are
    compiled into the tables from its own style_*.h. Force::pair_map is public, but
    Modify::fix_map and Modify::compute_map (pointers to std::map<std::string, creator>) are
    private. The C++ standard lets an explicit instantiation name a private member (the usual
    access checking does not apply to the names it uses, [temp.explicit]), so
    Reach<Tag, &Modify::x> is instantiated explicitly and its friend function table(Tag) hands
-   that member pointer out; nothing else here touches a private member.
+   that member pointer out.
    What would break it: a LIGGGHTS that renames fix_map or compute_map, changes their type (the
    map, the creator's signature, a map held by value) or replaces them by another registry
    stops this file from compiling. The member pointers are resolved from the modify.h compiled
