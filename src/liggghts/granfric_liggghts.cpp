@@ -2,9 +2,9 @@
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 /* ----------------------------------------------------------------------
    GRANFRIC under LIGGGHTS 3.8: LIGGGHTS's own main program (from its shared library) with every
-   GRANFRIC style added to its style tables. LIGGGHTS has no plugin loader; its tables of pair
-   styles are public and those of fixes and computes private, reached here through an explicit
-   template instantiation (which may name a private member: the standard's own way in).
+   GRANFRIC style (granfric_styles.h) added to its style tables once LIGGGHTS is constructed.
+   The styles live in the tables of that first Force and Modify: the `clear` command makes new
+   ones from LIGGGHTS's own styles alone.
 ------------------------------------------------------------------------- */
 
 #include "lammps.h"
@@ -12,15 +12,7 @@
 #include "input.h"
 #include "modify.h"
 
-#include "compute_hardsphere_atom.h"
-#include "compute_hardsphere_collisions.h"
-#include "compute_hardsphere_collisions_local.h"
-#include "compute_hardsphere_convection.h"
-#include "compute_hardsphere_temp.h"
-#include "fix_hardsphere_ed.h"
-#include "fix_hardsphere_kick.h"
-#include "fix_hardsphere_wall.h"
-#include "pair_hardsphere.h"
+#include "granfric_styles.h"
 
 #include <map>
 #include <mpi.h>
@@ -33,7 +25,25 @@ namespace {
 using FixTable = std::map<std::string, Fix *(*) (LAMMPS *, int, char **)>;
 using ComputeTable = std::map<std::string, Compute *(*) (LAMMPS *, int, int, char **)>;
 
-// a member pointer to a private table, handed out by a friend of an explicit instantiation
+/* ----------------------------------------------------------------------
+   private_style_tables(modify): the tables of fix and compute styles of LIGGGHTS's Modify,
+   which are private; with Reach and its two tags just before it, the only code that reaches a
+   private member of LIGGGHTS.
+   Why: LIGGGHTS 3.8 has no plugin interface and no call that adds a style; its styles are
+   compiled into the tables from its own style_*.h. Force::pair_map is public, but
+   Modify::fix_map and Modify::compute_map (pointers to std::map<std::string, creator>) are
+   private. The C++ standard lets an explicit instantiation name a private member (the usual
+   access checking does not apply to the names it uses, [temp.explicit]), so
+   Reach<Tag, &Modify::x> is instantiated explicitly and its friend function table(Tag) hands
+   that member pointer out.
+   What would break it: a LIGGGHTS that renames fix_map or compute_map, changes their type (the
+   map, the creator's signature, a map held by value) or replaces them by another registry
+   stops this file from compiling. The member pointers are resolved from the modify.h compiled
+   against, so a libliggghts whose Modify has another member layout than that header (the
+   library of another LIGGGHTS version under these headers) would be written at the wrong
+   place, with no error. A LIGGGHTS that fills or rebuilds the tables after its construction
+   would drop GRANFRIC's styles, and they would be unknown to the input script.
+------------------------------------------------------------------------- */
 template <class Tag, typename Tag::type M>
 struct Reach {
   friend typename Tag::type table(Tag) { return M; }
@@ -49,6 +59,16 @@ struct ComputeTag {
 template struct Reach<FixTag, &Modify::fix_map>;
 template struct Reach<ComputeTag, &Modify::compute_map>;
 
+struct ModifyTables {
+  FixTable &fixes;
+  ComputeTable &computes;
+};
+
+ModifyTables private_style_tables(Modify *modify)
+{
+  return {*(modify->*table(FixTag())), *(modify->*table(ComputeTag()))};
+}
+
 template <class P>
 Pair *pair_creator(LAMMPS *lmp)
 {
@@ -59,6 +79,7 @@ Fix *fix_creator(LAMMPS *lmp, int narg, char **arg)
 {
   return new F(lmp, narg, arg);
 }
+// (LIGGGHTS passes computes one more argument, which GRANFRIC's computes do not use)
 template <class C>
 Compute *compute_creator(LAMMPS *lmp, int, int narg, char **arg)
 {
@@ -68,19 +89,14 @@ Compute *compute_creator(LAMMPS *lmp, int, int narg, char **arg)
 void add_styles(LAMMPS *lmp)
 {
   auto &pairs = *lmp->force->pair_map;
-  pairs["hardsphere/rough"] = &pair_creator<PairHardsphereRough>;
-  pairs["hardsphere/walton"] = &pair_creator<PairHardsphereWalton>;
-  pairs["hardsphere/jz"] = &pair_creator<PairHardsphereJZ>;
-  auto &fixes = *(lmp->modify->*table(FixTag()));
-  fixes["hardsphere/ed"] = &fix_creator<FixHardsphereED>;
-  fixes["hardsphere/kick"] = &fix_creator<FixHardsphereKick>;
-  fixes["hardsphere/wall"] = &fix_creator<FixHardsphereWall>;
-  auto &computes = *(lmp->modify->*table(ComputeTag()));
-  computes["hardsphere/atom"] = &compute_creator<ComputeHardsphereAtom>;
-  computes["hardsphere/collisions"] = &compute_creator<ComputeHardsphereCollisions>;
-  computes["hardsphere/collisions/local"] = &compute_creator<ComputeHardsphereCollisionsLocal>;
-  computes["hardsphere/convection"] = &compute_creator<ComputeHardsphereConvection>;
-  computes["hardsphere/temp"] = &compute_creator<ComputeHardsphereTemp>;
+  ModifyTables tables = private_style_tables(lmp->modify);
+#define GRANFRIC_PAIR(name, Class, header, info) pairs[name] = &pair_creator<Class>;
+#define GRANFRIC_FIX(name, Class, header, info) tables.fixes[name] = &fix_creator<Class>;
+#define GRANFRIC_COMPUTE(name, Class, header, info) tables.computes[name] = &compute_creator<Class>;
+  GRANFRIC_STYLES(GRANFRIC_PAIR, GRANFRIC_FIX, GRANFRIC_COMPUTE)
+#undef GRANFRIC_PAIR
+#undef GRANFRIC_FIX
+#undef GRANFRIC_COMPUTE
 }
 
 }    // namespace

@@ -1,10 +1,12 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
-"""Collision-law demonstration (the main job until the integrator lands): for the three papers'
-parameter sets, a table of post-collision states and energy loss, and a figure of the tangential
-restitution and the energy loss against the impact angle, all computed by the C++ core.
+"""Collision-law demonstration: single collisions of two particles under the three papers'
+collision laws, computed by the C++ core (the laws the pair styles hand to fix hardsphere/ed),
+with no simulation: a table of post-collision states and energy changes at three impact angles,
+and a figure of the tangential restitution and the energy change against the impact angle.
+The papers' scenes simulated: tools/reproduce PAPER, and examples/.
 
-    PYTHONPATH=tools /usr/bin/python3 -m granfric.collision_demo [--out DIR]
+    /usr/bin/python3 tools/granfric collisions [--out DIR]
 """
 import argparse
 import math

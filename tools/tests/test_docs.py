@@ -3,7 +3,9 @@
 """The documentation in doc/: every file is ASCII only (as LAMMPS's own manual), and the output
 vector of fix hardsphere/ed has one length everywhere it is stated: the "global vector of N
 values" sentence of doc/fix_hardsphere_ed.rst, its f_ID[1] to f_ID[N] range, the number of
-enumerated items that follow it, and the "N-value output vector" of doc/README.md."""
+enumerated items that follow it, and the "N-value output vector" of doc/README.md. On every
+style page that takes keywords, the "keyword = ..." line of the syntax names the keywords the
+block below it describes, in the same order."""
 import os
 import re
 
@@ -56,3 +58,41 @@ def test_fix_hardsphere_ed_vector_length_is_the_same_everywhere():
 def test_the_item_count_sees_a_missing_item():
     text = "a global vector of 3 values:\n\n#. one\n#. two\n   more of two\n\nAfter.\n#. not this\n"
     assert enumerated_items_after(text, 0) == 2
+
+
+def keyword_lists(text):
+    """(the keywords of the "* keyword = *a* or *b*" line, those described as "*a* value(s) =" in
+    the parsed-literal block that follows), or None on a page that takes no keywords"""
+    start = text.find("keyword/value pairs may be appended")
+    if start < 0:
+        return None
+    line = re.search(r"^\* keyword = (.*)$", text[start:], re.M)
+    listed = re.findall(r"\*([\w/]+)\*", line.group(1)) if line else []
+    block = text.index(".. parsed-literal::", start)
+    described = []
+    for row in text[block:].splitlines()[1:]:
+        if row and not row[0].isspace():
+            break
+        m = re.match(r"\s+\*([\w/]+)\* values? =", row)
+        if m:
+            described.append(m.group(1))
+    return listed, described
+
+
+@pytest.mark.parametrize("name", sorted(n for n in os.listdir(DOC) if n.endswith(".rst")))
+def test_keyword_line_names_every_keyword(name):
+    with open(os.path.join(DOC, name)) as f:
+        lists = keyword_lists(f.read())
+    if lists is None:
+        pytest.skip("takes no keywords")
+    listed, described = lists
+    assert described, f"doc/{name}: no keyword described below the keyword/value pairs"
+    assert listed == described, f"doc/{name}: keyword line {listed}, described {described}"
+
+
+def test_the_keyword_check_sees_a_missing_keyword():
+    text = ("* zero or more keyword/value pairs may be appended\n* keyword = *a* or *c*\n\n"
+            "  .. parsed-literal::\n\n       *a* value = x\n         x = one\n"
+            "       *b* values = y z\n       *c* value = *p* or *q*\n         *p* = p\n\n"
+            "Examples\n       *d* value = not this\n")
+    assert keyword_lists(text) == (["a", "c"], ["a", "b", "c"])
