@@ -18,13 +18,15 @@
 // time origin (no rebase()) the trajectory is the same bit for bit for any cell width, with
 // cells or neighbour lists.
 //
-// One class, its roles in one file each: the event loop, pair collisions and the particles'
-// slots (event_driven.cpp), the cell grid and its crossings (cells.cpp), the search for
-// collision candidates (candidate_search.cpp; four at a time in AVX2 lanes: candidate_lanes.cpp),
-// neighbour lists (neighbour_lists.cpp), wall motion and contact times (wall_motion.cpp), the
-// response at walls (wall_response.cpp), statistics and records of the collisions
-// (statistics.cpp). The collision laws are collision.h, their table
-// law_table.h, driving by kicks kicks.h.
+// One class, its roles in one file each: the event loop and pair collisions (event_driven.cpp),
+// the options and their checks (options.cpp), the particles' slots and the changes from outside
+// between windows (particle_slots.cpp), global events (global_events.cpp), asking the memory
+// ahead for the events to come (prefetch.cpp), the cell grid and its crossings (cells.cpp), the
+// search for collision candidates (candidate_search.cpp; four at a time in AVX2 lanes:
+// candidate_lanes.cpp), neighbour lists (neighbour_lists.cpp), wall motion and contact times
+// (wall_motion.cpp), the response at walls (wall_response.cpp), statistics and records of the
+// collisions (statistics.cpp). The collision laws are collision.h, their table law_table.h,
+// driving by kicks kicks.h.
 #ifndef GRANFRIC_CORE_EVENT_DRIVEN_H
 #define GRANFRIC_CORE_EVENT_DRIVEN_H
 
