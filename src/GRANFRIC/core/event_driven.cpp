@@ -11,9 +11,9 @@
 
 namespace granfric {
 
-double EventDriven::schedule(int i)
+double EDCore::schedule(int i)
 {
-  Sched &p = S[i];
+  Schedule &p = schedules[i];
   double et;
   if (p.ct <= p.xt) {
     et = p.ct;
@@ -22,16 +22,16 @@ double EventDriven::schedule(int i)
     et = p.xt;
     p.ekind = CROSSING;
   }
-  if (!WT.empty() && WT[i] < et) {
-    et = WT[i];
+  if (!wall_times.empty() && wall_times[i] < et) {
+    et = wall_times[i];
     p.ekind = WALL;
   }
   return et;
 }
 
-void EventDriven::predict(int i, bool pairs)
+void EDCore::predict(int i, bool pairs)
 {
-  Sched &p = S[i];
+  Schedule &p = schedules[i];
   const Vec3 xi = pos(i, now), vi = vel(i, now);
   if (lists)
     predict_rebuild(i, xi, vi);
@@ -47,9 +47,9 @@ void EventDriven::predict(int i, bool pairs)
     scan_full(i);
 }
 
-void EventDriven::collide_pair(int e)
+void EDCore::collide_pair(int e)
 {
-  Sched &se = S[e];
+  Schedule &se = schedules[e];
   const double t = se.ct;
   // the pair in a canonical order (i: the smaller key), whichever of the two had the event:
   // the collision law's arithmetic is not symmetric in the last bits
@@ -57,21 +57,21 @@ void EventDriven::collide_pair(int e)
   const int i = swap ? se.cpartner : e, j = swap ? e : se.cpartner;
   const int sg = swap ? -1 : 1;
   const int off[3] = {sg * se.coff[0], sg * se.coff[1], sg * se.coff[2]};    // (j's image)
-  Hot &hp = H[i];
-  Cold &p = C[i];
-  Sched &s = S[i];
-  Hot &hq = H[j];
-  Cold &q = C[j];
+  Flight &hp = flights[i];
+  Collider &p = colliders[i];
+  Schedule &s = schedules[i];
+  Flight &hq = flights[j];
+  Collider &q = colliders[j];
   advance(i, t);
   advance(j, t);
   const Vec3 r = hp.x - hq.x - periods(off[0], off[1], off[2]);
   const Vec3 n = (1.0 / norm(r)) * r;
 
-  LawParams law = laws[s.type * (ntypes + 1) + S[j].type];
+  LawParams law = laws[s.type * (ntypes + 1) + schedules[j].type];
   const bool tc_elastic = tc_recent(i, t) || tc_recent(j, t);
-  if (!TL.empty()) TL[i] = TL[j] = t;
+  if (!last_collision.empty()) last_collision[i] = last_collision[j] = t;
   if (tc_elastic) law = law.elastic();
-  Body b1{hp.v, p.w, p.m, hp.a, qt[s.type]}, b2{hq.v, q.w, q.m, hq.a, qt[S[j].type]};
+  Body b1{hp.v, p.w, p.m, hp.a, qt[s.type]}, b2{hq.v, q.w, q.m, hq.a, qt[schedules[j].type]};
   const Collision c = collide(law, b1, b2, n);
   hp.v = c.v1;
   p.w = c.w1;
@@ -86,9 +86,9 @@ void EventDriven::collide_pair(int e)
   q.last_partner = i;
   for (int d = 0; d < 3; d++) {
     s.last_off[d] = off[d];
-    S[j].last_off[d] = -off[d];
+    schedules[j].last_off[d] = -off[d];
   }
-  const long ni = ++s.ncollisions, nj = ++S[j].ncollisions;
+  const long ni = ++s.ncollisions, nj = ++schedules[j].ncollisions;
   record_pair(i, j, t, r, n, b1, b2, c, tc_elastic, ni, nj);
   if (ni > opt.max_collisions || nj > opt.max_collisions) {
     std::ostringstream s;
@@ -107,36 +107,36 @@ void EventDriven::collide_pair(int e)
 void EventDriven::start()
 {
   now = 0.0;
-  for (auto &h : H) h.t = 0.0;
-  for (auto &c : C) c.last_partner = -1;
+  for (auto &h : flights) h.t = 0.0;
+  for (auto &c : colliders) c.last_partner = -1;
   start_common();
 }
 
 void EventDriven::start_at(double t)
 {
   now = t;
-  for (size_t i = 0; i < H.size(); i++)
-    if (!S[i].gone && !(H[i].t <= t))
+  for (size_t i = 0; i < flights.size(); i++)
+    if (!schedules[i].gone && !(flights[i].t <= t))
       throw std::invalid_argument("start_at: a particle's stored time lies after the start");
   start_common();
 }
 
-void EventDriven::start_common()
+void EDCore::start_common()
 {
-  const int n = (int) H.size();
-  for (auto &s : S) s.ncollisions = 0;
-  WT.assign(opt.walls.empty() ? 0 : n, NEVER);
+  const int n = (int) flights.size();
+  for (auto &s : schedules) s.ncollisions = 0;
+  wall_times.assign(opt.walls.empty() ? 0 : n, NEVER);
   tick = 0;
   for (int i = 0; i < n; i++) {
-    C[i].changed = 0;
+    colliders[i].changed = 0;
     if (opt.dim == 2) {
-      H[i].v.z = 0.0;
-      C[i].w.x = C[i].w.y = 0.0;
+      flights[i].v.z = 0.0;
+      colliders[i].w.x = colliders[i].w.y = 0.0;
     }
   }
   double amax = 0.0;
   for (int i = 0; i < n; i++)
-    if (!S[i].gone) amax = std::max(amax, H[i].a);
+    if (!schedules[i].gone) amax = std::max(amax, flights[i].a);
   setup_lists(2.0 * amax * (1.0 + 1e-10));
   setup_cells();
   renumber(cell_order());
@@ -149,10 +149,10 @@ void EventDriven::start_common()
   dirty.clear();
 }
 
-void EventDriven::copy_keys()
+void EDCore::copy_keys()
 {
-  const int n = (int) H.size();
-  for (int i = 0; i < n; i++) C[i].key = key(i);
+  const int n = (int) flights.size();
+  for (int i = 0; i < n; i++) colliders[i].key = key(i);
 }
 
 EDStats EventDriven::advance_to(double t_end)
@@ -162,9 +162,9 @@ EDStats EventDriven::advance_to(double t_end)
   stats.wall_hits.assign(opt.walls.size(), 0);
   stats.wall_impulse.assign(3 * opt.walls.size(), 0.0);
   stats.wall_work.assign(opt.walls.size(), 0.0);
-  if (tally_on) PT.assign(H.size(), ParticleTally{{0, 0, 0, 0, 0, 0}, 0, 0, 0, 0, 0, -INF});
-  for (auto &s : S) s.ncollisions = 0;
-  const int n = (int) H.size();
+  if (tally_on) tallies.assign(flights.size(), EDParticleTally{{0, 0, 0, 0, 0, 0}, 0, 0, 0, 0, 0, -INF});
+  for (auto &s : schedules) s.ncollisions = 0;
+  const int n = (int) flights.size();
   window_crossings = 0;
   crossing_cap = opt.max_collisions * (long) std::max(1, n);
   refresh();
@@ -178,7 +178,7 @@ EDStats EventDriven::advance_to(double t_end)
   while (n > 0) {
     const int i = queue.top();
     const double et = queue.top_time();
-    const Sched &p = S[i];
+    const Schedule &p = schedules[i];
     if (g < gtimes.size() && gtimes[g] < t_end && !(et < gtimes[g])) {
       global_event((int) g++);
       continue;
@@ -206,27 +206,27 @@ EDStats EventDriven::advance_to(double t_end)
   return stats;
 }
 
-void EventDriven::retick()
+void EDCore::retick()
 {
-  const int n = (int) S.size();
+  const int n = (int) schedules.size();
   for (int i = 0; i < n; i++) {
-    Sched &s = S[i];
+    Schedule &s = schedules[i];
     if (s.cpartner >= 0) s.ctick = stale(s) ? 0 : 1;
   }
-  for (int i = 0; i < n; i++) C[i].changed = 1;
+  for (int i = 0; i < n; i++) colliders[i].changed = 1;
   tick = 1;
 }
 
 void EventDriven::rebase(double dt)
 {
   // the same shift for every time keeps the heap ordered (rounding is monotone)
-  for (auto &p : H) p.t -= dt;
-  for (auto &t : TL) t -= dt;
-  for (auto &s : S) {
+  for (auto &p : flights) p.t -= dt;
+  for (auto &t : last_collision) t -= dt;
+  for (auto &s : schedules) {
     s.ct -= dt;
     s.xt -= dt;
   }
-  for (auto &t : WT) t -= dt;
+  for (auto &t : wall_times) t -= dt;
   queue.shift(dt);
   now -= dt;
   clock += dt;
@@ -236,7 +236,7 @@ EDStats EventDriven::run(double t_end)
 {
   start();
   const EDStats s = advance_to(t_end);
-  for (int i = 0; i < (int) H.size(); i++) advance(i, t_end);
+  for (int i = 0; i < (int) flights.size(); i++) advance(i, t_end);
   return s;
 }
 

@@ -12,15 +12,16 @@ void EventDriven::set_global_events(const std::vector<double> &times, std::funct
   gapply = std::move(apply);
 }
 
-void EventDriven::global_event(int k)
+void EDCore::global_event(int k)
 {
   now = gtimes[k];
-  const int n = (int) H.size();
+  const int n = (int) flights.size();
   auto energy = [&]() {
     double e = 0.0;
     for (int i = 0; i < n; i++) {
-      const Cold &p = C[i];
-      if (counted(i)) e += 0.5 * p.m * (norm2(H[i].v) + qt[S[i].type] * H[i].a * H[i].a * norm2(p.w));
+      const Collider &p = colliders[i];
+      const Flight &h = flights[i];
+      if (counted(i)) e += 0.5 * p.m * (norm2(h.v) + qt[schedules[i].type] * h.a * h.a * norm2(p.w));
     }
     return e;
   };
@@ -30,8 +31,8 @@ void EventDriven::global_event(int k)
   stats.injected += energy() - before;
   stats.global_events++;
   for (int i = 0; i < n; i++) {
-    Hot &h = H[i];
-    Cold &p = C[i];
+    Flight &h = flights[i];
+    Collider &p = colliders[i];
     turned(i);    // every trajectory changed: all stored predictions are stale
     p.last_partner = -1;
     if (opt.dim == 2) {

@@ -60,8 +60,8 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   opt = o;
   lanes = o.simd && have_lanes();    // (the scans that use them are 3d without gravity)
   // the last collision times exist only with the TC model
-  if (o.tc > 0.0 && TL.size() != H.size()) TL.assign(H.size(), -INF);
-  if (!(o.tc > 0.0)) TL.clear();
+  if (o.tc > 0.0 && last_collision.size() != flights.size()) last_collision.assign(flights.size(), -INF);
+  if (!(o.tc > 0.0)) last_collision.clear();
   has_gravity = norm2(o.gravity) != 0.0;
   ntypes = nt;
   laws = table;
@@ -72,8 +72,8 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
     P[d] = o.periodic[d] ? L[d] : o.period[d];
     framed = framed || (o.period[d] > 0.0 && d < o.dim);
   }
-  if (!framed) FR.clear();
-  else if (FR.size() != H.size()) FR.assign(H.size(), Frame{{0, 0, 0}});
+  if (!framed) frames.clear();
+  else if (frames.size() != flights.size()) frames.assign(flights.size(), Frame{{0, 0, 0}});
 }
 
 static bool same_law(const LawParams &a, const LawParams &b)

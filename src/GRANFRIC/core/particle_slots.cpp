@@ -13,17 +13,17 @@ void EventDriven::resize(int n)
 {
   fast.clear();
   acct = EDAccounting();
-  H.assign(n, Hot());
-  C.assign(n, Cold());
-  TL.assign(opt.tc > 0.0 ? n : 0, -INF);
-  S.assign(n, Sched());
-  WT.clear();
-  img.assign(n, Image{{0, 0, 0}, -1});
-  if (framed) FR.assign(n, Frame{{0, 0, 0}});
+  flights.assign(n, Flight());
+  colliders.assign(n, Collider());
+  last_collision.assign(opt.tc > 0.0 ? n : 0, -INF);
+  schedules.assign(n, Schedule());
+  wall_times.clear();
+  images.assign(n, CellImage{{0, 0, 0}, -1});
+  if (framed) frames.assign(n, Frame{{0, 0, 0}});
   lists = false;
-  XW.clear();
-  NB.clear();
-  NN.clear();
+  list_centres.clear();
+  list_entries.clear();
+  list_counts.clear();
   ext.resize(n);
   loc.resize(n);
   for (int i = 0; i < n; i++) ext[i] = loc[i] = i;
@@ -34,8 +34,8 @@ void EventDriven::resize(int n)
 void EventDriven::set_last_partner(int e, int p, const int off[3])
 {
   const int i = loc[e];
-  C[i].last_partner = p < 0 ? -1 : loc[p];
-  for (int d = 0; d < 3; d++) S[i].last_off[d] = p < 0 ? 0 : off[d];
+  colliders[i].last_partner = p < 0 ? -1 : loc[p];
+  for (int d = 0; d < 3; d++) schedules[i].last_off[d] = p < 0 ? 0 : off[d];
 }
 
 void EventDriven::set_frame(int e, const int f[3])
@@ -47,14 +47,14 @@ void EventDriven::set_frame(int e, const int f[3])
   for (int d = 0; d < 3; d++)
     if (f[d] && !(opt.period[d] > 0.0 && d < opt.dim))
       throw std::invalid_argument("set_frame: a frame shift in a dimension without a period");
-  Frame &F = FR[loc[e]];
+  Frame &F = frames[loc[e]];
   for (int d = 0; d < 3; d++) F.f[d] = f[d];
 }
 
 void EventDriven::remove(int e)
 {
   const int i = loc[e];
-  Sched &s = S[i];
+  Schedule &s = schedules[i];
   if (s.gone) return;
   if (started) {
     if (lists) list_drop(i);
@@ -65,15 +65,15 @@ void EventDriven::remove(int e)
   no_events(i);
   s.ekind = NONE;
   turned(i);    // predictions that involved it are stale
-  C[i].last_partner = -1;
+  colliders[i].last_partner = -1;
 }
 
 void EventDriven::changed(int e, bool own_time)
 {
   const int i = loc[e];
-  Hot &p = H[i];
-  Cold &c = C[i];
-  Sched &s = S[i];
+  Flight &p = flights[i];
+  Collider &c = colliders[i];
+  Schedule &s = schedules[i];
   if (!started) throw std::logic_error("EventDriven::changed() before start()");
   if (!(p.a <= cell_amax))
     throw std::invalid_argument("a changed particle's radius exceeds what the cell grid admits");
@@ -102,19 +102,19 @@ void EventDriven::changed(int e, bool own_time)
 bool EventDriven::nudge(int e, const double *x, const double *v, const double *w)
 {
   const int i = loc[e];
-  Hot &p = H[i];
-  const Sched &s = S[i];
+  Flight &p = flights[i];
+  const Schedule &s = schedules[i];
   if (!started) throw std::logic_error("EventDriven::nudge() before start()");
   if (s.gone || lists) return false;
   for (int d = 0; d < opt.dim; d++) {    // the cell (and image) place() would give
     int c, k;
     locate(d, x[d], c, k);
-    if (k != img[i].k[d] || c != s.c[d]) return false;
+    if (k != images[i].k[d] || c != s.c[d]) return false;
   }
   p.x = Vec3(x[0], x[1], x[2]);
   p.v = Vec3(v[0], v[1], v[2]);
   p.t = now;
-  Cold &c = C[i];
+  Collider &c = colliders[i];
   c.w = Vec3(w[0], w[1], w[2]);
   if (opt.dim == 2) {
     p.v.z = 0.0;
@@ -123,11 +123,11 @@ bool EventDriven::nudge(int e, const double *x, const double *v, const double *w
   return true;
 }
 
-void EventDriven::refresh()
+void EDCore::refresh()
 {
   for (int e : dirty) {
     const int i = loc[e];
-    if (S[i].gone) continue;    // (changed, then removed)
+    if (schedules[i].gone) continue;    // (changed, then removed)
     predict(i);
     reschedule(i);
   }

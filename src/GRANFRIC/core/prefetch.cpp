@@ -13,37 +13,37 @@ namespace granfric {
 // on. In two stages, because the candidates are known only from the cell lists: first
 // (deep = false) the lines of those lists, one event later (deep = true) the candidates'
 // records.
-void EventDriven::prefetch_around(int i, bool deep) const
+void EDCore::prefetch_around(int i, bool deep) const
 {
   asm volatile("");    // (see EventQueue::prefetch_ahead)
-  __builtin_prefetch(&H[i]);
-  __builtin_prefetch(&img[i]);
+  __builtin_prefetch(&flights[i]);
+  __builtin_prefetch(&images[i]);
   if (lists) {
-    const Entry *e = &NB[(size_t) i * LCAP];
+    const ListEntry *e = &list_entries[(size_t) i * LCAP];
     if (!deep) {
       // its list centre and the lines of its list
-      __builtin_prefetch(&XW[i]);
+      __builtin_prefetch(&list_centres[i]);
       __builtin_prefetch(e);
-      __builtin_prefetch(e + 64 / sizeof(Entry));    // (the next cache line)
-    } else if (S[i].ekind != CROSSING) {
+      __builtin_prefetch(e + 64 / sizeof(ListEntry));    // (the next cache line)
+    } else if (schedules[i].ekind != CROSSING) {
       // the records of its first listed neighbours, which its scan's first lanes wait for;
       // the loads of the later ones overlap with the work on those (asking for every
       // neighbour's record was alike, bench/README.md)
-      const int first = NN[i] < PREFETCH_LISTED ? NN[i] : PREFETCH_LISTED;
-      for (int m = 0; m < first; m++) __builtin_prefetch(&H[e[m].j]);
+      const int first = list_counts[i] < PREFETCH_LISTED ? list_counts[i] : PREFETCH_LISTED;
+      for (int m = 0; m < first; m++) __builtin_prefetch(&flights[e[m].j]);
     } else {
       // a list rebuild leaves its neighbours' lists (list_drop): the line of each reverse
       // entry, and the neighbour's count
-      for (int m = 0; m < NN[i]; m++) {
-        __builtin_prefetch(&NB[(size_t) e[m].j * LCAP + e[m].r]);
-        __builtin_prefetch(&NN[e[m].j]);
+      for (int m = 0; m < list_counts[i]; m++) {
+        __builtin_prefetch(&list_entries[(size_t) e[m].j * LCAP + e[m].r]);
+        __builtin_prefetch(&list_counts[e[m].j]);
       }
     }
     return;
   }
   // the cells around the one the particle is in, or, where its event is a crossing, the one
   // it enters (the cells inside the grid; at its edges nothing more)
-  const Sched &p = S[i];
+  const Schedule &p = schedules[i];
   int16_t c[3] = {p.c[0], p.c[1], p.c[2]};
   if (p.ekind == CROSSING) c[p.xdim] = (int16_t) (c[p.xdim] + p.xdir);
   const int dz1 = opt.dim == 3 ? 1 : 0;
@@ -60,21 +60,21 @@ void EventDriven::prefetch_around(int i, bool deep) const
       }
       for (int dx = -1; dx <= 1; dx++) {
         const int j = row[dx] & ~(row[dx] >> 31);    // (an empty cell, -1: particle 0, no branch)
-        __builtin_prefetch(&H[j]);
-        __builtin_prefetch(&img[j]);
+        __builtin_prefetch(&flights[j]);
+        __builtin_prefetch(&images[j]);
       }
     }
 }
 
 // The events ahead, as the queue's walk along its next buckets meets their particles
 // (EventQueue::prefetch_ahead): in stages over the next events, each reading what the one
-// before asked for. A particle met now: its schedule and hot record; one event later the lines
+// before asked for. A particle met now: its schedule and flight record; one event later the lines
 // of the cell lists around it, and its collision partner's records; two events later the
 // records of its first candidates, and the cell lists around the partner; three events later
 // the partner's first candidates. The partner's cells and candidates only with neighbour
 // lists or in systems of PARTNERS_FAR times the size from which the loop prefetches: below,
 // they cost more than they save (bench/README.md).
-void EventDriven::prefetch_upcoming()
+void EDCore::prefetch_upcoming()
 {
   Upcoming &u = upcoming;
   const int s0 = u.turn & 3, s1 = (u.turn + 3) & 3, s2 = (u.turn + 2) & 3, s3 = (u.turn + 1) & 3;
@@ -88,19 +88,19 @@ void EventDriven::prefetch_upcoming()
   for (int k = 0; k < u.n[s1]; k++) {
     const int i = u.p[s1][k];
     prefetch_around(i, false);
-    const Sched &si = S[i];
+    const Schedule &si = schedules[i];
     const int q = si.ekind == COLLISION ? si.cpartner : -1;
     u.q[s1][k] = q;
-    prefetch_cold(i);
+    prefetch_collider(i);
     if (q >= 0)
       prefetch_partner(q);
     else if (si.cpartner >= 0)    // (a crossing reads its candidate partner's tick: stale())
-      __builtin_prefetch(&C[si.cpartner].changed);
+      __builtin_prefetch(&colliders[si.cpartner].changed);
   }
   u.n[s0] = 0;
   queue.prefetch_ahead([this, &u, s0](int i) {
-    __builtin_prefetch(&S[i]);
-    __builtin_prefetch(&H[i]);
+    __builtin_prefetch(&schedules[i]);
+    __builtin_prefetch(&flights[i]);
     if (u.n[s0] < Upcoming::MOST) u.p[s0][u.n[s0]++] = i;
   });
   u.turn++;
