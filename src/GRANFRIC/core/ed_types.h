@@ -75,6 +75,15 @@ struct EDWall {
   double speed_bound() const { return !vibrating() ? 0.0 : sine ? A * omega : 4.0 * A * omega / M_PI; }
   // position, velocity and acceleration at absolute time s
   void motion(double s, double &w, double &vw, double &aw) const;
+
+  // Every field, in one fixed order: f(name, field of s...) for each, with the fields of every s
+  // given by reference (EDOptions::each_field)
+  template <class F, class... S>
+  static void each_field(F &&f, S &...s)
+  {
+    f("dim", s.dim...), f("side", s.side...), f("pos", s.pos...), f("laws", s.laws...);
+    f("T", s.T...), f("seed", s.seed...), f("A", s.A...), f("omega", s.omega...), f("sine", s.sine...);
+  }
 };
 
 struct EDOptions {
@@ -120,6 +129,29 @@ struct EDOptions {
   // reaches this value (the predictions keep what they were; for tests of that restart, which
   // the 32-bit clock otherwise reaches after about 4e9 collisions)
   uint32_t tick_last = 0xfffffffeu;
+
+  // Every field, in one fixed order: f(name, role, field of s...) for each, with the fields of
+  // every s given by reference. role DEFINING: part of the configuration, whose change makes a
+  // new event queue (EventDriven::same_configuration compares it); TUNING: a choice of how the
+  // same trajectories are computed, which a kept event queue does not depend on. A field that
+  // holds walls or laws holds records with an each_field of their own (EDWall, LawParams). The
+  // one list of the fields, for comparisons (same_configuration) and descriptions (describe).
+  enum Role { DEFINING, TUNING };
+  template <class F, class... S>
+  static void each_field(F &&f, S &...s)
+  {
+    f("dim", DEFINING, s.dim...), f("lo", DEFINING, s.lo...), f("hi", DEFINING, s.hi...);
+    f("periodic", DEFINING, s.periodic...), f("open", DEFINING, s.open...);
+    f("period", DEFINING, s.period...), f("gravity", DEFINING, s.gravity...);
+    f("tc", DEFINING, s.tc...), f("max_collisions", DEFINING, s.max_collisions...);
+    f("gamma_bins", DEFINING, s.gamma_bins...), f("walls", DEFINING, s.walls...);
+    f("shape", DEFINING, s.shape...), f("cell_width", DEFINING, s.cell_width...);
+    f("neighbours", DEFINING, s.neighbours...), f("list_skin", DEFINING, s.list_skin...);
+    f("simd", TUNING, s.simd...), f("prefetch_bytes", TUNING, s.prefetch_bytes...);
+    f("tick_last", TUNING, s.tick_last...);
+  }
+  // every field by name and value, in the order of each_field (for messages and logs)
+  std::string describe() const;
 };
 
 struct EDStats {

@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: the options of the event-driven core (see event_driven.h): their
-// checks, the state configure() derives from them, and whether two configurations are the same.
+// checks, the state configure() derives from them, and, from their one field list
+// (EDOptions::each_field), whether two configurations are the same and a description.
 #include "event_driven.h"
 
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace granfric {
 
@@ -76,41 +80,143 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
   else if (frames.size() != flights.size()) frames.assign(flights.size(), Frame{{0, 0, 0}});
 }
 
-static bool same_law(const LawParams &a, const LawParams &b)
-{
-  return a.kind == b.kind && a.r == b.r && a.rt_max == b.rt_max && a.mu_s == b.mu_s && a.mu_d == b.mu_d;
-}
+// Comparisons and descriptions of values of the fields that EDOptions::each_field lists: numbers
+// (compared as numbers: a NaN is never the same), the three values of an array or a Vec3, vectors
+// element by element, and records with a field list of their own (walls, laws) field by field.
+namespace {
 
-static bool same_laws(const std::vector<LawParams> &a, const std::vector<LawParams> &b)
+template <class T>
+bool same_value(const T &a, const T &b);
+template <class T>
+bool same_value(const T (&a)[3], const T (&b)[3]);
+template <class T>
+bool same_value(const std::vector<T> &a, const std::vector<T> &b);
+bool same_value(const Vec3 &a, const Vec3 &b);
+
+struct SameFields {
+  bool same = true;
+  template <class T>
+  void operator()(const char *, const T &a, const T &b)
+  {
+    same = same && same_value(a, b);
+  }
+  template <class T>
+  void operator()(const char *name, EDOptions::Role role, const T &a, const T &b)
+  {
+    if (role == EDOptions::DEFINING) operator()(name, a, b);
+  }
+};
+
+template <class T>
+bool same_value(const T &a, const T &b)
+{
+  if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
+    return a == b;
+  } else {
+    SameFields s;
+    T::each_field(s, a, b);
+    return s.same;
+  }
+}
+template <class T>
+bool same_value(const T (&a)[3], const T (&b)[3])
+{
+  return same_value(a[0], b[0]) && same_value(a[1], b[1]) && same_value(a[2], b[2]);
+}
+bool same_value(const Vec3 &a, const Vec3 &b)
+{
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+template <class T>
+bool same_value(const std::vector<T> &a, const std::vector<T> &b)
 {
   if (a.size() != b.size()) return false;
   for (size_t k = 0; k < a.size(); k++)
-    if (!same_law(a[k], b[k])) return false;
+    if (!same_value(a[k], b[k])) return false;
   return true;
+}
+
+// a number as it is (with the digits that tell it from its neighbours), an array or Vec3 as its
+// three values in parentheses, a vector in brackets, a record as {name value, ...}
+template <class T>
+void put_value(std::ostream &os, const T &v);
+template <class T>
+void put_value(std::ostream &os, const T (&v)[3]);
+template <class T>
+void put_value(std::ostream &os, const std::vector<T> &v);
+void put_value(std::ostream &os, const Vec3 &v);
+
+struct PutFields {
+  std::ostream &os;
+  const char *sep = "";
+  template <class T>
+  void operator()(const char *name, const T &v)
+  {
+    os << sep << name << ' ';
+    put_value(os, v);
+    sep = ", ";
+  }
+  template <class T>
+  void operator()(const char *name, EDOptions::Role, const T &v)
+  {
+    operator()(name, v);
+  }
+};
+
+template <class T>
+void put_value(std::ostream &os, const T &v)
+{
+  if constexpr (std::is_enum_v<T>) {
+    os << (long) v;
+  } else if constexpr (std::is_arithmetic_v<T>) {
+    os << v;
+  } else {
+    os << '{';
+    T::each_field(PutFields{os}, v);
+    os << '}';
+  }
+}
+template <class T>
+void put_value(std::ostream &os, const T (&v)[3])
+{
+  os << '(' << v[0] << ' ' << v[1] << ' ' << v[2] << ')';
+}
+void put_value(std::ostream &os, const Vec3 &v)
+{
+  os << '(' << v.x << ' ' << v.y << ' ' << v.z << ')';
+}
+template <class T>
+void put_value(std::ostream &os, const std::vector<T> &v)
+{
+  os << '[';
+  for (size_t k = 0; k < v.size(); k++) {
+    if (k) os << ", ";
+    put_value(os, v[k]);
+  }
+  os << ']';
+}
+
+}    // namespace
+
+std::string EDOptions::describe() const
+{
+  std::ostringstream os;
+  os << std::boolalpha << std::setprecision(17);
+  each_field(PutFields{os}, *this);
+  return os.str();
 }
 
 bool EventDriven::same_configuration(const EDOptions &o, int nt, const std::vector<LawParams> &table,
                                      const EDOptions &opt, int ntypes, const std::vector<LawParams> &laws)
 {
-  if (o.dim != opt.dim || nt != ntypes || !same_laws(table, laws) ||
-      o.gravity.x != opt.gravity.x || o.gravity.y != opt.gravity.y || o.gravity.z != opt.gravity.z ||
-      o.tc != opt.tc || o.max_collisions != opt.max_collisions || o.gamma_bins != opt.gamma_bins ||
-      o.cell_width != opt.cell_width || o.neighbours != opt.neighbours ||
-      o.list_skin != opt.list_skin ||
-      o.walls.size() != opt.walls.size() ||
-      shape_table(o, nt) != shape_table(opt, ntypes))
-    return false;
-  for (int d = 0; d < 3; d++)
-    if (o.lo[d] != opt.lo[d] || o.hi[d] != opt.hi[d] || o.periodic[d] != opt.periodic[d] ||
-        o.open[d] != opt.open[d] || o.period[d] != opt.period[d])
-      return false;
-  for (size_t k = 0; k < o.walls.size(); k++) {
-    const EDWall &a = o.walls[k], &b = opt.walls[k];
-    if (a.dim != b.dim || a.side != b.side || a.pos != b.pos || a.T != b.T || a.seed != b.seed ||
-        a.A != b.A || a.omega != b.omega || a.sine != b.sine || !same_laws(a.laws, b.laws))
-      return false;
-  }
-  return true;
+  if (nt != ntypes || !same_value(table, laws)) return false;
+  // (no shape table means 0.4 for every type: the same as a table of 0.4s)
+  EDOptions a = o, b = opt;
+  a.shape = shape_table(o, nt);
+  b.shape = shape_table(opt, ntypes);
+  SameFields s;
+  EDOptions::each_field(s, a, b);
+  return s.same;
 }
 
 }    // namespace granfric
