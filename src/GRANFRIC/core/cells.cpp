@@ -41,7 +41,7 @@ std::vector<int> EDCore::cell_order() const
 // v in the new order (v[order[k]] becomes element k, then fix(element)), in place: each cycle
 // of the permutation is followed once (element k takes the one at order[k], the first of the
 // cycle kept aside), so that a renumbering needs no second copy of the particles' records
-// (at N = 10^6 that copy was the peak of the whole run's memory)
+// (in a large system that copy would be the peak of the whole run's memory)
 template <class V, class F>
 static void permute(V &v, const std::vector<int> &order, F &&fix)
 {
@@ -111,10 +111,10 @@ void EDCore::renumber(const std::vector<int> &order)
 }
 
 // Cell width: at least the largest contact distance sigma. In 2d a dilute system gets wider
-// cells: a particle then crosses fewer cells per free path, for a few more candidates per scan.
-// Measured optimum (callgrind, elastic discs, area fractions 0.05-0.3, bench/cell_width.sh):
-// w = 0.52 sigma (n sigma^2)^(-2/3), i.e. sigma from area fraction 0.3 up (there 0.99 sigma),
-// 3.3 sigma at 0.05. In 3d the narrowest cells were best, or within 2 %, at every fraction measured.
+// cells: a particle then crosses fewer cells per free path, for a few more candidates per scan;
+// w = 0.52 sigma (n sigma^2)^(-2/3) balances the two (the fit of bench/cell_width.sh), i.e. sigma
+// from area fraction 0.3 up, 3.3 sigma at 0.05. In 3d a wider cell adds candidates in three
+// dimensions for the crossings it saves, so the cells are as narrow as they may be.
 double EDCore::auto_cell_width(int dim, double sigma, double n)
 {
   if (dim != 2 || !(sigma > 0.0) || !(n > 0.0)) return sigma;
@@ -154,8 +154,9 @@ void EDCore::setup_cells()
     nc[d] = std::max(1, nc[d]);
     cw[d] = L[d] / nc[d];
   }
-  // bound the number of cells by the number of particles (beyond that cells only cost memory;
-  // a dilute 3d system gains from up to 8 cells per particle, measured)
+  // bound the number of cells by the number of particles (beyond that cells only cost memory
+  // and empty cells for the scans to pass; up to 8 per particle in 3d, so that a dilute gas keeps
+  // its narrow cells, see auto_cell_width)
   const long maxcells = std::max<long>(27, (opt.dim == 3 ? 8L : 4L) * (long) flights.size());
   while ((long) nc[0] * nc[1] * nc[2] > maxcells) {
     int d = 0;

@@ -122,8 +122,8 @@ struct EDOptions {
   bool simd = true;
   // from how many bytes of the core's records (memory_bytes()) on the event loop asks the
   // memory ahead for the records of the events to come (performance only: the trajectories are
-  // the same bits). Below, the records mostly stay in the cache and asking costs up to 18 %;
-  // around 5 MB it is alike, from 7 MB on faster (bench/README.md)
+  // the same bits). Below, the records mostly stay in the cache, where asking only adds work to
+  // every event; above, most records an event reads are misses, whose wait asking early hides
   long prefetch_bytes = 5L << 20;
   // the clock of trajectory changes that marks stale predictions starts again from 1 once it
   // reaches this value (the predictions keep what they were; for tests of that restart, which

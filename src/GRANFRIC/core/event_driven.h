@@ -7,10 +7,11 @@
 // exact time order; then every particle is advanced to t_end. Candidate partners come from a
 // cell grid (cell width >= largest contact distance) kept exact by cell-crossing events, or, in
 // dense 3d systems, from neighbour lists kept exact by list-rebuild events (neighbour_lists.cpp),
-// so no pair can be missed whatever the window length. Per-particle local times and lazy updates, one
-// scheduled event per particle, invalidation by a clock of trajectory changes, a calendar queue
-// (event_queue.h), and the TC model of Luding & McNamara against inelastic collapse. Positions are unwrapped inside
-// the window (periodic images are tracked by integer offsets, not by moving particles).
+// so no pair can be missed whatever the window length. Per-particle local times and lazy
+// updates, one scheduled event per particle, invalidation by a clock of trajectory changes, a
+// calendar queue (event_queue.h), and the TC model of Luding & McNamara against inelastic
+// collapse. Positions are unwrapped inside the window (periodic images are tracked by integer
+// offsets, not by moving particles).
 // The cell grid cannot change the rounding: a particle's stored state changes only at its own
 // collisions and global events (a cell crossing leaves it alone), and a pair's contact time is
 // computed from the two stored states alone (at the later of their times, the image shift

@@ -14,16 +14,12 @@
 
 namespace granfric {
 
-
-// Lists pay in dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to about
-// 40000 particles, while their records (about 500 bytes per particle with the lists, against
-// about 220 with cells) fit the last-level cache. Measured with bench_core against cells, elastic
-// spheres, a machine with 32 MB of shared last-level cache (bench/README.md): about a third
-// fewer instructions per collision; with both testing candidates in AVX2 lanes and the skin at
-// 0.6, at fraction 0.45 faster by 31 % at N = 4000 and by 9 - 25 % at 10976 - 32000, at 0.40 by
-// 22 % at 4000 and 15 % at 10976, alike at 32000; beyond about 5 x 10^4 particles, or while
-// another process shares the cache, slower. At fraction 0.35 lists and cells are alike at
-// N = 32000 (lists with a skin of 0.8 faster by 5 % at 4000); in 2d cells are cheaper.
+// Lists pay in dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to
+// MAX_LISTS particles. A list holds fewer candidates than the 27 cells around a particle, so a
+// collision takes less work; but the records take more than twice the memory (about 500 bytes
+// per particle with the lists, against about 220 with cells), which pays only while they stay in
+// the last-level cache: in a larger system every scan would wait for its list. In 2d the 9 cells
+// around a particle hold few candidates to save.
 bool EDCore::choose_lists(int dim, double sigma, double n, long count)
 {
   return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= MAX_LISTS;
@@ -45,8 +41,8 @@ void EDCore::setup_lists(double sigma)
   list_entries.clear();
   list_counts.clear();
   if (!lists) return;
-  // (measured with the candidates in lanes: 0.6 faster than 0.4 by 3 - 8 %, 0.7 and 0.8 alike
-  // or slower; bench/README.md)
+  // (a larger skin rebuilds less often but scans longer lists: 0.6 balances the two where
+  // candidates are tested in lanes, which make the longer lists cheap)
   const double skin = opt.list_skin > 0.0 ? opt.list_skin : 0.6;
   lskin = 0.5 * skin * sigma;
   const double lrad = (sigma + 2.0 * lskin) * (1.0 + 1e-9);

@@ -27,8 +27,8 @@ void EDCore::prefetch_around(int i, bool deep) const
       __builtin_prefetch(e + 64 / sizeof(ListEntry));    // (the next cache line)
     } else if (schedules[i].ekind != CROSSING) {
       // the records of its first listed neighbours, which its scan's first lanes wait for;
-      // the loads of the later ones overlap with the work on those (asking for every
-      // neighbour's record was alike, bench/README.md)
+      // the later ones arrive while the first lanes are worked on, so asking for them too would
+      // add requests without taking away a wait
       const int first = list_counts[i] < PREFETCH_LISTED ? list_counts[i] : PREFETCH_LISTED;
       for (int m = 0; m < first; m++) __builtin_prefetch(&flights[e[m].j]);
     } else {
@@ -72,8 +72,9 @@ void EDCore::prefetch_around(int i, bool deep) const
 // of the cell lists around it, and its collision partner's records; two events later the
 // records of its first candidates, and the cell lists around the partner; three events later
 // the partner's first candidates. The partner's cells and candidates only with neighbour
-// lists or in systems of PARTNERS_FAR times the size from which the loop prefetches: below,
-// they cost more than they save (bench/README.md).
+// lists or in systems of PARTNERS_FAR times the size from which the loop prefetches: in a
+// smaller system what the partner's scan reads is mostly still in the cache from the events
+// before, and asking for it again only adds work.
 void EDCore::prefetch_upcoming()
 {
   Upcoming &u = upcoming;
