@@ -161,11 +161,8 @@ class EventDriven : private EDCore {
   // optional per-window list of the booked collisions (pairs and walls) into *log
   void record_collisions(std::vector<EDCollisionRecord> *log) { collision_log = log; }
   // Optional per-particle tallies of each window (by external index; every collision a particle
-  // takes part in, booked here or not): the collision virial (6 values as EDStats::virial, half
-  // of a pair collision's r_a dP_b to each partner, a wall collision's to its particle), its
-  // pair and wall collisions, the changes of its translational and rotational kinetic energy in
-  // pair collisions and of its kinetic energy in wall collisions, and the window time of its
-  // last collision (-inf: none)
+  // takes part in, booked here or not; what they hold: EDParticleTally). Of the collision virial
+  // a particle gets half of a pair collision's r_a dP_b and the whole of a wall collision's.
   using ParticleTally = EDParticleTally;
   void tally_particles(bool on) { tally_on = on; }
   const ParticleTally &particle_tally(int e) const { return tallies[e]; }
@@ -257,7 +254,6 @@ class EventDriven : private EDCore {
     vel(i, t).to(v);
     colliders[i].w.to(w);
   }
-
 };
 
 }    // namespace granfric
