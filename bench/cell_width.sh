@@ -3,7 +3,7 @@
 # Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 # GRANFRIC benchmark: instructions per collision of the event-driven core against the width of
 # its cells (callgrind, reproducible on a shared machine), for elastic smooth discs (2D) or
-# spheres (3D) at several fractions; "auto" is the core's own choice (EventDriven::setup_cells).
+# spheres (3D) at several fractions; "auto" is the core's own choice (EDCore::setup_cells).
 # Steady state: a run with 20 collisions per particle less one with 10 (cancels the start).
 # Prints a table; not a test.
 #   bash bench/cell_width.sh [build] [dim] [N]            (default: build 2 10000)

@@ -89,11 +89,11 @@ MPI_LIBS = ("libmpi", "libopen-pal", "libopen-rte", "mca_", "libucp", "libuct", 
             "libpmix", "libevent", "libhwloc", "libfabric", "libpsm")
 
 
-# the event loop asking the memory for the records of events to come (EventDriven::
+# the event loop asking the memory for the records of events to come (EDCore::
 # prefetch_upcoming and what it calls): from 5 MiB of records (EDOptions::prefetch_bytes), so a
 # serial run of N = 99856 does it and so does a rank's half; it buys time, not work, and
 # counting it would weigh the two runs unequally
-PREFETCH = ("EventDriven::prefetch_around", "EventDriven::prefetch_upcoming", "EventQueue::prefetch")
+PREFETCH = ("EDCore::prefetch_around", "EDCore::prefetch_upcoming", "EventQueue::prefetch")
 
 
 def work_instructions(path):

@@ -3,7 +3,7 @@
 // Core tests of how stale predictions are recognised: each change of a trajectory advances one
 // 32-bit clock, and a prediction is stale once its partner changed after it was made. When the
 // clock nears its end it starts again from 1 with every prediction as stale or fresh as it was
-// (EventDriven::retick). Restarting it every few dozen changes must leave every trajectory the
+// (EDCore::retick). Restarting it every few dozen changes must leave every trajectory the
 // same bits as never restarting it, with cells and lists, walls and gravity, kicks (which mark every
 // prediction stale) and the TC model, in 2d and 3d.
 #include "ed_fixture.h"

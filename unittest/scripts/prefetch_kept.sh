@@ -5,15 +5,15 @@
 # memory, so it drops every call to a function that only prefetches unless the function has an
 # effect (the empty volatile asm of EventQueue::prefetch_ahead and of the functions it calls).
 # Nothing else would notice: the trajectories are the same, only large systems get slower (at
-# N = 10^6 by half). The pipeline's stages (EventDriven::prefetch_upcoming) must call
+# N = 10^6 by half). The pipeline's stages (EDCore::prefetch_upcoming) must call
 # prefetch_around, or hold its prefetches inlined.
 #   prefetch_kept.sh BINARY ...
 set -euo pipefail
 for bin in "$@"; do
   body=$(objdump -d --no-show-raw-insn -C "$bin" |
-    awk '/<granfric::EventDriven::prefetch_upcoming\(\)>:$/ {on = 1; next} /^$/ {on = 0} on')
+    awk '/<granfric::EDCore::prefetch_upcoming\(\)>:$/ {on = 1; next} /^$/ {on = 0} on')
   if [ -z "$body" ]; then
-    echo "FAIL: $bin has no EventDriven::prefetch_upcoming"
+    echo "FAIL: $bin has no EDCore::prefetch_upcoming"
     exit 1
   fi
   calls=$(grep -c 'call.*prefetch_around' <<< "$body" || true)

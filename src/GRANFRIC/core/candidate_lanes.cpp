@@ -25,7 +25,7 @@ namespace granfric {
 
 namespace {
 
-// the eight doubles of four particles' hot records, one vector per field (lane l: record l)
+// the eight doubles of four particles' flight records, one vector per field (lane l: record l)
 struct Fields {
   __m256d x, y, z, vx, vy, vz, t, a;
 };
@@ -116,24 +116,25 @@ LANES __m256d ahead_by(__m256d a, __m256d dt, __m256d u, __m256d keep)
 
 }    // namespace
 
-bool EventDriven::have_lanes()
+bool EDCore::have_lanes()
 {
   return __builtin_cpu_supports("avx2");
 }
 
 template <bool LATEST, bool CELLS>
-__attribute__((target("avx2"))) void EventDriven::offer_lanes(Seek &k, const Entry *e, const int *js, int n)
+__attribute__((target("avx2"))) void EDCore::offer_lanes(Seek &k, const ListEntry *e, const int *js, int n)
 {
   const int i = k.i;
-  const int *pk = img[i].k;
+  const int *pk = images[i].k;
   const Vec3 g = opt.gravity;    // (zero: flight_v's arithmetic)
   const __m256d pt = _mm256_set1_pd(k.p.t), pa = _mm256_set1_pd(k.p.a), neg = _mm256_set1_pd(-0.0);
   for (int m = 0; m < n; m += 4) {
     const int live = n - m < 4 ? n - m : 4;    // (lanes past the end read i itself)
-    const Entry *el = CELLS ? nullptr : e + m;
+    const ListEntry *el = CELLS ? nullptr : e + m;
     int jl[4];
     for (int l = 0; l < 4; l++) jl[l] = l < live ? (CELLS ? js[m + l] : el[l].j) : i;
-    const double *rec[4] = {&H[jl[0]].x.x, &H[jl[1]].x.x, &H[jl[2]].x.x, &H[jl[3]].x.x};
+    const double *rec[4] = {&flights[jl[0]].x.x, &flights[jl[1]].x.x, &flights[jl[2]].x.x,
+                            &flights[jl[3]].x.x};
     const Fields q = transpose(rec);
     // the seeker at tr, the later of the two stored times (contact())
     const __m256d keep = LATEST ? _mm256_set1_pd(-0.0) : _mm256_cmp_pd(q.t, pt, _CMP_LE_OQ);
@@ -153,7 +154,7 @@ __attribute__((target("avx2"))) void EventDriven::offer_lanes(Seek &k, const Ent
     Shifts o;
     bool any;
     if (CELLS) {
-      const int *kl[4] = {img[jl[0]].k, img[jl[1]].k, img[jl[2]].k, img[jl[3]].k};
+      const int *kl[4] = {images[jl[0]].k, images[jl[1]].k, images[jl[2]].k, images[jl[3]].k};
       o = image_shifts(pk, kl);
       any = shifted(_mm_or_si128(_mm_or_si128(o.o0, o.o1), o.o2), -1, live);
     } else {
@@ -188,8 +189,9 @@ __attribute__((target("avx2"))) void EventDriven::offer_lanes(Seek &k, const Ent
       const double tau = cl[l] / (-bl[l] + std::sqrt(dl[l]));
       const double t = at_least_now(tl[l] + (tau > 0.0 ? tau : 0.0));
       const int j = jl[l];
-      const int o0 = CELLS ? pk[0] - img[j].k[0] : el[l].o[0], o1 = CELLS ? pk[1] - img[j].k[1] : el[l].o[1];
-      const int o2 = CELLS ? pk[2] - img[j].k[2] : el[l].o[2];
+      const int o0 = CELLS ? pk[0] - images[j].k[0] : el[l].o[0],
+                o1 = CELLS ? pk[1] - images[j].k[1] : el[l].o[1];
+      const int o2 = CELLS ? pk[2] - images[j].k[2] : el[l].o[2];
       if (t < k.t && !separating(i, j, o0, o1, o2)) {
         take(k, t, j, o0, o1, o2);
         // the lanes after l at the new horizon
@@ -199,10 +201,10 @@ __attribute__((target("avx2"))) void EventDriven::offer_lanes(Seek &k, const Ent
   }
 }
 
-template void EventDriven::offer_lanes<true, true>(Seek &, const Entry *, const int *, int);
-template void EventDriven::offer_lanes<true, false>(Seek &, const Entry *, const int *, int);
-template void EventDriven::offer_lanes<false, true>(Seek &, const Entry *, const int *, int);
-template void EventDriven::offer_lanes<false, false>(Seek &, const Entry *, const int *, int);
+template void EDCore::offer_lanes<true, true>(Seek &, const ListEntry *, const int *, int);
+template void EDCore::offer_lanes<true, false>(Seek &, const ListEntry *, const int *, int);
+template void EDCore::offer_lanes<false, true>(Seek &, const ListEntry *, const int *, int);
+template void EDCore::offer_lanes<false, false>(Seek &, const ListEntry *, const int *, int);
 
 #undef LANES
 

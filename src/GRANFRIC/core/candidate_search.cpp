@@ -13,19 +13,19 @@ namespace granfric {
 
 // collision candidates of i among the particles of the cells at offsets dlo..dhi (inclusive)
 // around its cell; periodic images by integer offsets
-void EventDriven::scan(int i, const int dlo[3], const int dhi[3])
+void EDCore::scan(int i, const int dlo[3], const int dhi[3])
 {
   scan_in<false>(i, dlo, dhi);
 }
 
-void EventDriven::scan_full(int i)
+void EDCore::scan_full(int i)
 {
   static const int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};    // (in 2d z is not scanned)
   scan_in<true>(i, lo, hi);
 }
 
 template <bool FULL>
-void EventDriven::scan_in(int i, const int dlo[3], const int dhi[3])
+void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 {
   if (opt.dim == 2) {
     if (has_gravity)
@@ -43,7 +43,7 @@ void EventDriven::scan_in(int i, const int dlo[3], const int dhi[3])
 // A seeker at the present (as after its collision) is at least as late as every candidate
 // (at_present()): its scan knows that at compile time (LATEST)
 template <int DIM, bool GRAV, bool FULL>
-inline void EventDriven::scan_at(int i, const int dlo[3], const int dhi[3])
+inline void EDCore::scan_at(int i, const int dlo[3], const int dhi[3])
 {
   if (at_present(i))
     scan_t<DIM, GRAV, FULL, true>(i, dlo, dhi);
@@ -58,7 +58,7 @@ inline void EventDriven::scan_at(int i, const int dlo[3], const int dhi[3])
 // Seen from q (shift -o) it is the same number: the differences change sign exactly. NEVER also
 // for a contact that certainly comes at or after before (see pair_contact_time's horizon).
 template <int DIM, bool GRAV>
-inline __attribute__((always_inline)) double EventDriven::contact(const Hot &p, const Hot &q, int o0,
+inline __attribute__((always_inline)) double EDCore::contact(const Flight &p, const Flight &q, int o0,
                                                                   int o1, int o2, double before) const
 {
   if (q.t <= p.t) return contact_at<DIM, GRAV>(p, p.t, p.x, p.v, q, o0, o1, o2, horizon_limit(before - p.t, before));
@@ -81,8 +81,8 @@ static inline v2d xy(const Vec3 &a)
 }
 
 template <int DIM, bool GRAV>
-inline __attribute__((always_inline)) double EventDriven::contact_at(const Hot &p, double tr, const Vec3 &a,
-                                                                     const Vec3 &u, const Hot &q, int o0,
+inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p, double tr, const Vec3 &a,
+                                                                     const Vec3 &u, const Flight &q, int o0,
                                                                      int o1, int o2, double h) const
 {
   const double dtj = tr - q.t;    // q at tr
@@ -119,18 +119,18 @@ inline __attribute__((always_inline)) double EventDriven::contact_at(const Hot &
 }
 
 template <int DIM, bool GRAV>
-double EventDriven::pair_time(int i, int j, int o0, int o1, int o2) const
+double EDCore::pair_time(int i, int j, int o0, int o1, int o2) const
 {
-  return contact<DIM, GRAV>(H[i], H[j], o0, o1, o2, NEVER);
+  return contact<DIM, GRAV>(flights[i], flights[j], o0, o1, o2, NEVER);
 }
 
 // One candidate j at the image shift o (j's position + o P): kept as the seeker's best when its
 // contact time is the earliest so far. LATEST: the seeker's stored time is the latest (no
 // candidate's is later), so that its state and horizon limit are the scan's for every one.
 template <int DIM, bool GRAV, bool LATEST>
-inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, int o0, int o1, int o2)
+inline __attribute__((always_inline)) void EDCore::offer(Seek &k, int j, int o0, int o1, int o2)
 {
-  const Hot &q = H[j];
+  const Flight &q = flights[j];
   const double t = LATEST ? contact_at<DIM, GRAV>(k.p, k.p.t, k.p.x, k.p.v, q, o0, o1, o2, k.h)
                           : contact<DIM, GRAV>(k.p, q, o0, o1, o2, k.t);
   // two particles whose last collisions were with each other (same periodic image)
@@ -140,16 +140,16 @@ inline __attribute__((always_inline)) void EventDriven::offer(Seek &k, int j, in
 }
 
 // a scan of i from its schedule's candidate so far, and the scan's best candidate back into it
-inline EventDriven::Seek EventDriven::seek(int i) const
+inline EDCore::Seek EDCore::seek(int i) const
 {
-  const Sched &s = S[i];
-  return Seek{H[i], s.ct, horizon_limit(s.ct - H[i].t, s.ct), i, -1, {0, 0, 0}};
+  const Schedule &s = schedules[i];
+  return Seek{flights[i], s.ct, horizon_limit(s.ct - flights[i].t, s.ct), i, -1, {0, 0, 0}};
 }
 
-inline void EventDriven::settle(const Seek &k)
+inline void EDCore::settle(const Seek &k)
 {
   if (k.j < 0) return;
-  Sched &s = S[k.i];
+  Schedule &s = schedules[k.i];
   s.ct = k.t;
   s.cpartner = k.j;
   s.ctick = tick;
@@ -159,10 +159,10 @@ inline void EventDriven::settle(const Seek &k)
 // offer_cells() in 3d without gravity: the candidates as list entries, offered in lanes (as
 // many at a time as a buffer holds). False (k as it was): a shift beyond an entry's range.
 template <bool LATEST>
-bool EventDriven::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of)
+bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of)
 {
   const int i = k.i;
-  const Image *IM = img.data();
+  const CellImage *IM = images.data();
   int nb = 0;
   if (!shift) {
     // (every cell at i's own image: the shifts follow from the images in the lanes)
@@ -179,9 +179,9 @@ bool EventDriven::offer_cells_lanes(Seek &k, const int *first, int nfirst, const
     offer_lanes<LATEST, true>(k, nullptr, buf, nb);
     return true;
   }
-  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
+  const int pk[3] = {images[i].k[0], images[i].k[1], images[i].k[2]};
   const Seek start = k;
-  Entry buf[LANE_BUFFER];
+  ListEntry buf[LANE_BUFFER];
   int wide = 0;
   for (int f = 0; f < nfirst; f++) {
     const int8_t *u = shift[of[f]];
@@ -189,7 +189,7 @@ bool EventDriven::offer_cells_lanes(Seek &k, const int *first, int nfirst, const
     for (int j = first[f]; j >= 0; j = IM[j].next) {
       const int o0 = k0 - IM[j].k[0], o1 = k1 - IM[j].k[1], o2 = k2 - IM[j].k[2];
       wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
-      buf[nb] = Entry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
+      buf[nb] = ListEntry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
       nb += j != i;
       if (nb == LANE_BUFFER) {
         if (wide & ~255) break;
@@ -209,12 +209,12 @@ bool EventDriven::offer_cells_lanes(Seek &k, const int *first, int nfirst, const
 // The candidates in gathered cells, in order: first[f] heads the list of a cell reached at the
 // image shift shift[of[f]] (shift null: every shift 0)
 template <int DIM, bool GRAV, bool LATEST>
-inline __attribute__((always_inline)) void EventDriven::offer_cells(Seek &k, const int *first, int nfirst,
+inline __attribute__((always_inline)) void EDCore::offer_cells(Seek &k, const int *first, int nfirst,
                                                                    const int8_t (*shift)[3], const int *of)
 {
   const int i = k.i;
-  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
-  const Image *IM = img.data();
+  const int pk[3] = {images[i].k[0], images[i].k[1], images[i].k[2]};
+  const CellImage *IM = images.data();
   if (DIM == 3 && !GRAV && lanes && offer_cells_lanes<LATEST>(k, first, nfirst, shift, of)) return;
   for (int f = 0; f < nfirst; f++) {
     const int8_t *u = shift ? shift[of[f]] : nullptr;
@@ -230,11 +230,11 @@ inline __attribute__((always_inline)) void EventDriven::offer_cells(Seek &k, con
 // z distance, and every operation left is the one of the 3d arithmetic in the same order, so
 // the contact times are the same numbers bit for bit.
 template <int DIM, bool GRAV, bool FULL, bool LATEST>
-void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
+void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
 {
   Seek k = seek(i);
-  const int pk[3] = {img[i].k[0], img[i].k[1], img[i].k[2]};
-  const int16_t *c = S[i].c;
+  const int pk[3] = {images[i].k[0], images[i].k[1], images[i].k[2]};
+  const int16_t *c = schedules[i].c;
   const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
   const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
   const int x0 = FULL ? -1 : dlo[0], x1 = FULL ? 1 : dhi[0];
@@ -292,9 +292,9 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
         if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
-        for (int j = head[cell]; j >= 0; j = img[j].next)
-          if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] + kx - img[j].k[0], pk[1] + ky - img[j].k[1],
-                                      DIM == 3 ? pk[2] + kz - img[j].k[2] : 0);
+        for (int j = head[cell]; j >= 0; j = images[j].next)
+          if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] + kx - images[j].k[0], pk[1] + ky - images[j].k[1],
+                                      DIM == 3 ? pk[2] + kz - images[j].k[2] : 0);
       }
     }
   }
@@ -303,16 +303,16 @@ void EventDriven::scan_t(int i, const int dlo[3], const int dhi[3])
 
 // collision candidates of i among its listed neighbours (no gravity with lists)
 template <int DIM, bool LATEST>
-void EventDriven::scan_list_t(int i)
+void EDCore::scan_list_t(int i)
 {
   Seek k = seek(i);
   // i's list rebuild predicts it afresh, so no contact from then on need be found
-  if (S[i].xt < k.t) {
-    k.t = S[i].xt;
+  if (schedules[i].xt < k.t) {
+    k.t = schedules[i].xt;
     k.h = horizon_limit(k.t - k.p.t, k.t);
   }
-  const Entry *e = &NB[(size_t) i * LCAP];
-  const int n = NN[i];
+  const ListEntry *e = &list_entries[(size_t) i * LCAP];
+  const int n = list_counts[i];
   if (DIM == 3 && lanes)
     offer_lanes<LATEST, false>(k, e, nullptr, n);
   else
@@ -320,7 +320,7 @@ void EventDriven::scan_list_t(int i)
   settle(k);
 }
 
-void EventDriven::scan_list(int i)
+void EDCore::scan_list(int i)
 {
   const bool latest = at_present(i);
   if (opt.dim == 3)
@@ -331,19 +331,19 @@ void EventDriven::scan_list(int i)
 
 #if !GRANFRIC_LANES
 // (without AVX2 lanes, see candidate_lanes.cpp: one candidate at a time)
-bool EventDriven::have_lanes()
+bool EDCore::have_lanes()
 {
   return false;
 }
 
 template <bool LATEST, bool CELLS>
-void EventDriven::offer_lanes(Seek &k, const Entry *e, const int *js, int n)
+void EDCore::offer_lanes(Seek &k, const ListEntry *e, const int *js, int n)
 {
-  const int *pk = img[k.i].k;
+  const int *pk = images[k.i].k;
   for (int m = 0; m < n; m++) {
     const int j = CELLS ? js[m] : e[m].j;
     if (CELLS)
-      offer<3, false, LATEST>(k, j, pk[0] - img[j].k[0], pk[1] - img[j].k[1], pk[2] - img[j].k[2]);
+      offer<3, false, LATEST>(k, j, pk[0] - images[j].k[0], pk[1] - images[j].k[1], pk[2] - images[j].k[2]);
     else
       offer<3, false, LATEST>(k, j, e[m].o[0], e[m].o[1], e[m].o[2]);
   }
@@ -359,9 +359,9 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
   long count = 0;
   depth = 0.0;
   key_i = key_j = -1;
-  const int n = (int) H.size();
+  const int n = (int) flights.size();
   for (int i = 0; i < n; i++) {
-    if (S[i].gone) continue;
+    if (schedules[i].gone) continue;
     const Vec3 xi = pos(i, now);
     const long ki = key(i);
     // j at the image shift o (j's position + o P next to i), each pair once
@@ -369,7 +369,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
       const long kj = key(j);
       if (ki > kj || (ki == kj && i >= j)) return;
       const Vec3 r = xi - pos(j, now) - periods(o0, o1, o2);
-      const double sigma = H[i].a + H[j].a, lim = sigma * (1.0 - tol), r2 = norm2(r);
+      const double sigma = flights[i].a + flights[j].a, lim = sigma * (1.0 - tol), r2 = norm2(r);
       // (the root only near contact: a pair is far when r2 exceeds lim^2 by more than the
       // roundings of the two ways of comparing)
       if (r2 > lim * lim * (1.0 + 1e-12) || !counted(ki <= kj ? i : j)) return;
@@ -383,18 +383,18 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
         }
       }
     };
-    const int *pk = img[i].k;
+    const int *pk = images[i].k;
     if (lists) {
-      const Entry *e = &NB[(size_t) i * LCAP];
-      for (int m = 0; m < NN[i]; m++) test(e[m].j, e[m].o[0], e[m].o[1], e[m].o[2]);
+      const ListEntry *e = &list_entries[(size_t) i * LCAP];
+      for (int m = 0; m < list_counts[i]; m++) test(e[m].j, e[m].o[0], e[m].o[1], e[m].o[2]);
       continue;
     }
     int cell[27];
     int8_t k[27][3];
     const int ncell = around(i, cell, k);
     for (int f = 0; f < ncell; f++)
-      for (int j = head[cell[f]]; j >= 0; j = img[j].next) {
-        const int *qk = img[j].k;
+      for (int j = head[cell[f]]; j >= 0; j = images[j].next) {
+        const int *qk = images[j].k;
         test(j, pk[0] + k[f][0] - qk[0], pk[1] + k[f][1] - qk[1], pk[2] + k[f][2] - qk[2]);
       }
   }
@@ -409,14 +409,14 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
 // the contact time of i and j seen from i at the image shift o (j's position + o P), offered to
 // both as their collision candidate (the canonical time of pair_time(): the one number offer()
 // gives either of them)
-void EventDriven::offer_both(int i, int j, int o0, int o1, int o2)
+void EDCore::offer_both(int i, int j, int o0, int o1, int o2)
 {
   double t;
   if (opt.dim == 2)
     t = has_gravity ? pair_time<2, true>(i, j, o0, o1, o2) : pair_time<2, false>(i, j, o0, o1, o2);
   else
     t = has_gravity ? pair_time<3, true>(i, j, o0, o1, o2) : pair_time<3, false>(i, j, o0, o1, o2);
-  Sched &si = S[i], &sj = S[j];
+  Schedule &si = schedules[i], &sj = schedules[j];
   if (!(t < si.ct) && !(t < sj.ct)) return;
   if (separating(i, j, o0, o1, o2)) return;
   if (t < si.ct) {
@@ -433,17 +433,17 @@ void EventDriven::offer_both(int i, int j, int o0, int o1, int o2)
   }
 }
 
-void EventDriven::predict_all()
+void EDCore::predict_all()
 {
   if (lists) {
     predict_all_lists();
     return;
   }
-  const int n = (int) H.size();
+  const int n = (int) flights.size();
   bool half = true;
   for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
   for (int i = 0; i < n; i++) {
-    if (S[i].gone) {
+    if (schedules[i].gone) {
       no_events(i);
       continue;
     }
@@ -460,11 +460,11 @@ void EventDriven::predict_all()
           nfwd++;
         }
   for (int i = 0; i < n; i++) {
-    if (S[i].gone) continue;
-    const int *pk = img[i].k;
-    const int16_t *c = S[i].c;
-    for (int j = img[i].next; j >= 0; j = img[j].next) {    // the rest of its own cell
-      const int *qk = img[j].k;
+    if (schedules[i].gone) continue;
+    const int *pk = images[i].k;
+    const int16_t *c = schedules[i].c;
+    for (int j = images[i].next; j >= 0; j = images[j].next) {    // the rest of its own cell
+      const int *qk = images[j].k;
       offer_both(i, j, pk[0] - qk[0], pk[1] - qk[1], pk[2] - qk[2]);
     }
     bool inside = true;
@@ -480,8 +480,8 @@ void EventDriven::predict_all()
         u[d] -= k[d] * nc[d];
       }
       if (skip) continue;
-      for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = img[j].next) {
-        const int *qk = img[j].k;
+      for (int j = head[(u[2] * nc[1] + u[1]) * nc[0] + u[0]]; j >= 0; j = images[j].next) {
+        const int *qk = images[j].k;
         offer_both(i, j, pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]);
       }
     }

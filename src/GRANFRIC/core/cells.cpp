@@ -15,7 +15,7 @@ namespace granfric {
 // Renumber the particles in cell order, so that neighbours sit close in memory (the cost of a
 // collision then stays flat with N). Partner references, cell lists and the queue follow; the
 // external numbering (ext / loc) does not change. Deterministic: a stable sort by cell.
-void EventDriven::reorder()
+void EDCore::reorder()
 {
   const std::vector<int> order = cell_order();
   std::vector<double> times(order.size());    // event times in the new numbering
@@ -25,12 +25,12 @@ void EventDriven::reorder()
 }
 
 // particles by cell (stable: by index within a cell)
-std::vector<int> EventDriven::cell_order() const
+std::vector<int> EDCore::cell_order() const
 {
-  const int n = (int) H.size();
+  const int n = (int) flights.size();
   const int ncell = (int) head.size();
   // (empty slots after every cell)
-  auto bin = [&](int i) { return S[i].gone ? ncell : cell_of(i); };
+  auto bin = [&](int i) { return schedules[i].gone ? ncell : cell_of(i); };
   std::vector<int> count(ncell + 2, 0), order(n);
   for (int i = 0; i < n; i++) count[bin(i) + 1]++;
   for (int c = 0; c <= ncell; c++) count[c + 1] += count[c];
@@ -41,7 +41,7 @@ std::vector<int> EventDriven::cell_order() const
 // v in the new order (v[order[k]] becomes element k, then fix(element)), in place: each cycle
 // of the permutation is followed once (element k takes the one at order[k], the first of the
 // cycle kept aside), so that a renumbering needs no second copy of the particles' records
-// (at N = 10^6 that copy was the peak of the whole run's memory)
+// (in a large system that copy would be the peak of the whole run's memory)
 template <class V, class F>
 static void permute(V &v, const std::vector<int> &order, F &&fix)
 {
@@ -68,66 +68,66 @@ static void permute(V &v, const std::vector<int> &order, F &&fix)
 
 // new internal index k for the particle order[k]: records, partner references, index maps and
 // cell lists follow (the queue is the caller's)
-void EventDriven::renumber(const std::vector<int> &order)
+void EDCore::renumber(const std::vector<int> &order)
 {
-  const int n = (int) H.size();
+  const int n = (int) flights.size();
   std::vector<int> newloc(n);
   for (int k = 0; k < n; k++) newloc[order[k]] = k;
   auto same = [](auto &) {};
   {
-    permute(H, order, same);
-    permute(C, order, [&](Cold &c) {
+    permute(flights, order, same);
+    permute(colliders, order, [&](Collider &c) {
       if (c.last_partner >= 0) c.last_partner = newloc[c.last_partner];
     });
-    permute(S, order, [&](Sched &s) {
+    permute(schedules, order, [&](Schedule &s) {
       if (s.cpartner >= 0) s.cpartner = newloc[s.cpartner];
     });
-    permute(img, order, same);
+    permute(images, order, same);
     permute(ext, order, same);
-    if (!WT.empty()) permute(WT, order, same);
-    if (!TL.empty()) permute(TL, order, same);
-    if (!FR.empty()) permute(FR, order, same);
+    if (!wall_times.empty()) permute(wall_times, order, same);
+    if (!last_collision.empty()) permute(last_collision, order, same);
+    if (!frames.empty()) permute(frames, order, same);
     if (lists) {
-      permute(XW, order, same);
-      permute(NN, order, same);
+      permute(list_centres, order, same);
+      permute(list_counts, order, same);
       // (the lists through a second copy: lists are for systems small enough to afford it)
-      big_vector<Entry> B((size_t) n * LCAP);
+      big_vector<ListEntry> B((size_t) n * LCAP);
       for (int k = 0; k < n; k++) {
-        const Entry *e = &NB[(size_t) order[k] * LCAP];
-        Entry *f = &B[(size_t) k * LCAP];
-        for (int m = 0; m < NN[k]; m++) {
+        const ListEntry *e = &list_entries[(size_t) order[k] * LCAP];
+        ListEntry *f = &B[(size_t) k * LCAP];
+        for (int m = 0; m < list_counts[k]; m++) {
           f[m] = e[m];
           f[m].j = newloc[e[m].j];
         }
       }
-      NB.swap(B);
+      list_entries.swap(B);
     }
   }
   for (int k = 0; k < n; k++) loc[ext[k]] = k;
   std::fill(head.begin(), head.end(), -1);
   for (int i = n - 1; i >= 0; i--)
-    if (!S[i].gone) cell_insert(i);
+    if (!schedules[i].gone) cell_insert(i);
   crossings_since_reorder = 0;
 }
 
 // Cell width: at least the largest contact distance sigma. In 2d a dilute system gets wider
-// cells: a particle then crosses fewer cells per free path, for a few more candidates per scan.
-// Measured optimum (callgrind, elastic discs, area fractions 0.05-0.3, bench/cell_width.sh):
-// w = 0.52 sigma (n sigma^2)^(-2/3), i.e. sigma from area fraction 0.3 up (there 0.99 sigma),
-// 3.3 sigma at 0.05. In 3d the narrowest cells were best, or within 2 %, at every fraction measured.
-double EventDriven::auto_cell_width(int dim, double sigma, double n)
+// cells: a particle then crosses fewer cells per free path, for a few more candidates per scan;
+// w = 0.52 sigma (n sigma^2)^(-2/3) balances the two (the fit of bench/cell_width.sh), i.e. sigma
+// from area fraction 0.3 up, 3.3 sigma at 0.05. In 3d a wider cell adds candidates in three
+// dimensions for the crossings it saves, so the cells are as narrow as they may be.
+double EDCore::auto_cell_width(int dim, double sigma, double n)
 {
   if (dim != 2 || !(sigma > 0.0) || !(n > 0.0)) return sigma;
   return std::max(sigma, 0.52 * sigma * std::pow(n * sigma * sigma, -2.0 / 3.0));
 }
 
-void EventDriven::setup_cells()
+void EDCore::setup_cells()
 {
   double amax = 0.0;
   long present = 0;
-  for (size_t i = 0; i < H.size(); i++)
-    if (!S[i].gone) {
-      amax = std::max(amax, H[i].a);
+  for (size_t i = 0; i < flights.size(); i++)
+    if (!schedules[i].gone) {
+      amax = std::max(amax, flights[i].a);
       present++;
     }
   const double sigma = 2.0 * amax * (1.0 + 1e-10);
@@ -154,9 +154,10 @@ void EventDriven::setup_cells()
     nc[d] = std::max(1, nc[d]);
     cw[d] = L[d] / nc[d];
   }
-  // bound the number of cells by the number of particles (beyond that cells only cost memory;
-  // a dilute 3d system gains from up to 8 cells per particle, measured)
-  const long maxcells = std::max<long>(27, (opt.dim == 3 ? 8L : 4L) * (long) H.size());
+  // bound the number of cells by the number of particles (beyond that cells only cost memory
+  // and empty cells for the scans to pass; up to 8 per particle in 3d, so that a dilute gas keeps
+  // its narrow cells, see auto_cell_width)
+  const long maxcells = std::max<long>(27, (opt.dim == 3 ? 8L : 4L) * (long) flights.size());
   while ((long) nc[0] * nc[1] * nc[2] > maxcells) {
     int d = 0;
     for (int k = 1; k < opt.dim; k++)
@@ -169,40 +170,40 @@ void EventDriven::setup_cells()
     kper[d] = opt.periodic[d] ? 0.0 : P[d];
   }
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
-  for (auto &m : img) m.next = -1;
+  for (auto &m : images) m.next = -1;
   cell_amax = amax;
-  for (size_t i = 0; i < H.size(); i++) {
-    if (S[i].gone) continue;
+  for (size_t i = 0; i < flights.size(); i++) {
+    if (schedules[i].gone) continue;
     place((int) i);
     cell_insert((int) i);
   }
 }
 
-void EventDriven::place(int i)
+void EDCore::place(int i)
 {
   const Vec3 x = pos(i, now);    // (with lists: the new list centre)
-  Sched &s = S[i];
+  Schedule &s = schedules[i];
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
       s.c[d] = 0;
-      img[i].k[d] = 0;
+      images[i].k[d] = 0;
       continue;
     }
     int c, k;
     // (a frame shift f: the grid sees the particle at x + f P, its image is -f)
-    const int f = framed ? FR[i].f[d] : 0;
+    const int f = framed ? frames[i].f[d] : 0;
     locate(d, f ? x[d] + f * P[d] : x[d], c, k);
-    img[i].k[d] = f ? -f : k;
+    images[i].k[d] = f ? -f : k;
     s.c[d] = (int16_t) c;
   }
   if (lists) {
-    const int *k = img[i].k;
-    XW[i] = x - periods(k[0], k[1], k[2]);
+    const int *k = images[i].k;
+    list_centres[i] = x - periods(k[0], k[1], k[2]);
   }
 }
 
 // cell c (0 .. nc-1) and periodic image k of coordinate xd in dimension d
-void EventDriven::locate(int d, double xd, int &c, int &k) const
+void EDCore::locate(int d, double xd, int &c, int &k) const
 {
   long u = (long) std::floor((xd - opt.lo[d]) / cw[d]);
   if (!opt.periodic[d]) u = std::min<long>(std::max<long>(u, 0), nc[d] - 1);    // edge cells extend outward
@@ -214,9 +215,9 @@ void EventDriven::locate(int d, double xd, int &c, int &k) const
 // The neighbouring cells of i's cell (3^dim of them, fewer at non-periodic edges) as cell
 // indices and the image shifts k (-1, 0, 1 per dimension) at which they are reached; returns
 // how many
-int EventDriven::around(int i, int cell[27], int8_t shift[27][3]) const
+int EDCore::around(int i, int cell[27], int8_t shift[27][3]) const
 {
-  const int16_t *c = S[i].c;
+  const int16_t *c = schedules[i].c;
   int n = 0;
   if (opt.dim == 3 && c[0] >= 1 && c[0] + 1 < nc[0] && c[1] >= 1 && c[1] + 1 < nc[1] && c[2] >= 1 &&
       c[2] + 1 < nc[2]) {    // (the usual case: no wrapping, no edge)
@@ -257,26 +258,26 @@ int EventDriven::around(int i, int cell[27], int8_t shift[27][3]) const
   return n;
 }
 
-void EventDriven::cell_insert(int i)
+void EDCore::cell_insert(int i)
 {
   const int c = cell_of(i);
-  img[i].next = head[c];
+  images[i].next = head[c];
   head[c] = i;
 }
 
 // singly linked cell lists: a cell holds about one particle, so finding i's predecessor costs
 // less than keeping a back link (4 bytes per particle) up to date
-void EventDriven::cell_remove(int i)
+void EDCore::cell_remove(int i)
 {
   int *link = &head[cell_of(i)];
   while (*link != i) {
     if (*link < 0) throw std::logic_error("EventDriven: a particle is missing from its cell list");
-    link = &img[*link].next;
+    link = &images[*link].next;
   }
-  *link = img[i].next;
+  *link = images[i].next;
 }
 
-void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
+void EDCore::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 {
   if (opt.dim == 2) {
     if (has_gravity)
@@ -293,10 +294,10 @@ void EventDriven::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 
 // the dimension and whether there is gravity at all known at compile time
 template <int DIM, bool GRAV>
-void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
+void EDCore::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  Sched &p = S[i];
-  const int *k = img[i].k;
+  Schedule &p = schedules[i];
+  const int *k = images[i].k;
   double xt = NEVER;
   int xdim = 0, xdir = 0;
   auto offer = [&](double t, int d, int dir) {    // (selections by masks, not branches)
@@ -335,7 +336,7 @@ void EventDriven::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
 }
 
 // one more crossing (or list rebuild) of particle i in this window, within the cap
-void EventDriven::count_crossing(int i)
+void EDCore::count_crossing(int i)
 {
   if (++window_crossings <= crossing_cap) return;
   const double speed = norm(vel(i, now));
@@ -346,24 +347,24 @@ void EventDriven::count_crossing(int i)
   throw EventCapError(s.str(), ext[i], ext[i], now, window_crossings, EventCapError::CROSSINGS, speed);
 }
 
-void EventDriven::cross(int i)
+void EDCore::cross(int i)
 {
   if (lists) {
     list_rebuild(i);
     return;
   }
   count_crossing(i);
-  const Hot &q = H[i];
-  Sched &p = S[i];
+  const Flight &q = flights[i];
+  Schedule &p = schedules[i];
   const int d = p.xdim, dir = p.xdir;
   cell_remove(i);
   p.c[d] += dir;
   if (p.c[d] == nc[d]) {
     p.c[d] = 0;
-    img[i].k[d]++;
+    images[i].k[d]++;
   } else if (p.c[d] < 0) {
     p.c[d] = nc[d] - 1;
-    img[i].k[d]--;
+    images[i].k[d]--;
   }
   cell_insert(i);
   stats.crossings++;

@@ -51,6 +51,15 @@ struct LawParams {
   bool can_create_energy() const { return kind == LawKind::JZ && mu_d > mu_s; }
   // is it smooth? (rt = -1 whatever the contact, no Coulomb limit: no tangential impulse)
   bool smooth() const { return rt_max == -1.0 && mu_s == INF; }
+
+  // Every field, in one fixed order: f(name, field of s...) for each, with the fields of every s
+  // given by reference (EDOptions::each_field)
+  template <class F, class... S>
+  static void each_field(F &&f, S &...s)
+  {
+    f("kind", s.kind...), f("r", s.r...), f("rt_max", s.rt_max...), f("mu_s", s.mu_s...);
+    f("mu_d", s.mu_d...);
+  }
 };
 
 struct Body {

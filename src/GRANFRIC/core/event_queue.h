@@ -14,11 +14,11 @@
 // so an earlier bucket holds only earlier events, and the front heap breaks ties by index. The
 // trajectory is therefore bit-for-bit the one of any other exact priority queue.
 //
-// With many buckets (WAIT_FROM and more: their heads then take 1 MiB and more, beyond this
-// machine's second-level cache) a link to a later bucket waits a few updates (WAIT of them, and
+// With many buckets (WAIT_FROM and more: their heads then take 1 MiB and more, more than a
+// second-level cache holds) a link to a later bucket waits a few updates (WAIT of them, and
 // never beyond the moment the front empties, before the calendar moves on): the bucket's head
 // is asked for from the memory when the time is given and read when the link is made. That
-// head is then mostly a miss, and linking at once waited for it (bench/README.md). No waiting
+// head is then mostly a miss, which linking at once would wait for. No waiting
 // event can be the next one: it lies in a later bucket than the front's, and the front moves on
 // only after every waiting link is made.
 #ifndef GRANFRIC_CORE_EVENT_QUEUE_H

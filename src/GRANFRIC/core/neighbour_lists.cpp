@@ -14,17 +14,13 @@
 
 namespace granfric {
 
-
-// Lists pay in dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to about
-// 40000 particles, while their records (about 500 bytes per particle with the lists, against
-// about 220 with cells) fit the last-level cache. Measured with bench_core against cells, elastic
-// spheres, a machine with 32 MB of shared last-level cache (bench/README.md): about a third
-// fewer instructions per collision; with both testing candidates in AVX2 lanes and the skin at
-// 0.6, at fraction 0.45 faster by 31 % at N = 4000 and by 9 - 25 % at 10976 - 32000, at 0.40 by
-// 22 % at 4000 and 15 % at 10976, alike at 32000; beyond about 5 x 10^4 particles, or while
-// another process shares the cache, slower. At fraction 0.35 lists and cells are alike at
-// N = 32000 (lists with a skin of 0.8 faster by 5 % at 4000); in 2d cells are cheaper.
-bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
+// Lists pay in dense 3d gases: from about n sigma^3 = 0.75 (packing fraction 0.39), up to
+// MAX_LISTS particles. A list holds fewer candidates than the 27 cells around a particle, so a
+// collision takes less work; but the records take more than twice the memory (about 500 bytes
+// per particle with the lists, against about 220 with cells), which pays only while they stay in
+// the last-level cache: in a larger system every scan would wait for its list. In 2d the 9 cells
+// around a particle hold few candidates to save.
+bool EDCore::choose_lists(int dim, double sigma, double n, long count)
 {
   return dim == 3 && n * sigma * sigma * sigma >= 0.75 && count <= MAX_LISTS;
 }
@@ -32,47 +28,47 @@ bool EventDriven::choose_lists(int dim, double sigma, double n, long count)
 // Decide whether this start() uses lists and size them (the cells come after, at least lrad
 // wide). The skin: lists of the pairs within sigma (1 + skin), rebuilt after a path of
 // skin sigma / 2.
-void EventDriven::setup_lists(double sigma)
+void EDCore::setup_lists(double sigma)
 {
   double vol = 1.0;
   long present = 0;
   for (int d = 0; d < opt.dim; d++) vol *= L[d];
-  for (const Sched &s : S) present += !s.gone;
+  for (const Schedule &s : schedules) present += !s.gone;
   lists = opt.neighbours == EDOptions::LISTS ||
       (opt.neighbours == EDOptions::AUTO && !has_gravity && vol > 0.0 &&
        choose_lists(opt.dim, sigma, present / vol, present));
-  XW.clear();
-  NB.clear();
-  NN.clear();
+  list_centres.clear();
+  list_entries.clear();
+  list_counts.clear();
   if (!lists) return;
-  // (measured with the candidates in lanes: 0.6 faster than 0.4 by 3 - 8 %, 0.7 and 0.8 alike
-  // or slower; bench/README.md)
+  // (a larger skin rebuilds less often but scans longer lists: 0.6 balances the two where
+  // candidates are tested in lanes, which make the longer lists cheap)
   const double skin = opt.list_skin > 0.0 ? opt.list_skin : 0.6;
   lskin = 0.5 * skin * sigma;
   const double lrad = (sigma + 2.0 * lskin) * (1.0 + 1e-9);
   lrad2 = lrad * lrad;
-  const size_t n = H.size();
-  XW.resize(n);    // (set by place())
-  NB.assign(n * LCAP, Entry{0, {0, 0, 0}, 0});
-  NN.assign(n, 0);
+  const size_t n = flights.size();
+  list_centres.resize(n);    // (set by place())
+  list_entries.assign(n * LCAP, ListEntry{0, {0, 0, 0}, 0});
+  list_counts.assign(n, 0);
 }
 
 // Remove i from the list of each of its neighbours (every entry, whatever its image) and empty
 // i's list. Each entry's reverse index gives the place of i in the neighbour's list; the
 // neighbour's last entry takes that place, and the reverse index of that entry's own reverse
 // follows it (it may be one of i's later entries: i listed at two images).
-void EventDriven::list_drop(int i)
+void EDCore::list_drop(int i)
 {
-  const Entry *e = &NB[(size_t) i * LCAP];
-  for (int m = 0; m < NN[i]; m++) {
+  const ListEntry *e = &list_entries[(size_t) i * LCAP];
+  for (int m = 0; m < list_counts[i]; m++) {
     const int j = e[m].j, r = e[m].r;
-    Entry *f = &NB[(size_t) j * LCAP];
-    const int last = --NN[j];
+    ListEntry *f = &list_entries[(size_t) j * LCAP];
+    const int last = --list_counts[j];
     if (r == last) continue;
     f[r] = f[last];
-    NB[(size_t) f[r].j * LCAP + f[r].r].r = (uint8_t) r;
+    list_entries[(size_t) f[r].j * LCAP + f[r].r].r = (uint8_t) r;
   }
-  NN[i] = 0;
+  list_counts[i] = 0;
 }
 
 // Enter every particle whose list centre lies within lrad of i's into i's list and i into
@@ -80,20 +76,20 @@ void EventDriven::list_drop(int i)
 // i in its cell; otherwise i in no cell, so that no test per candidate is needed to leave it
 // out). i's list must be empty. False if a list would exceed LCAP or an image shift would not
 // fit an entry (nothing changed).
-bool EventDriven::list_build(int i, bool higher_only)
+bool EDCore::list_build(int i, bool higher_only)
 {
   return higher_only ? list_build_t<true>(i) : list_build_t<false>(i);
 }
 
 template <bool HIGHER>
-bool EventDriven::list_build_t(int i)
+bool EDCore::list_build_t(int i)
 {
   int cell[27];
   int8_t shift[27][3];
   const int ncell = around(i, cell, shift);
-  const int *pk = img[i].k;
-  const Image *IM = img.data();
-  const Vec3 *X = XW.data();
+  const int *pk = images[i].k;
+  const CellImage *IM = images.data();
+  const Vec3 *X = list_centres.data();
   // near ones: the particle and the cell it was found in
   int fj[LCAP + 1];
   uint8_t fc[LCAP + 1];
@@ -110,8 +106,8 @@ bool EventDriven::list_build_t(int i)
       if (nf > LCAP) return false;
     }
   }
-  if (NN[i] + nf > LCAP) return false;
-  Entry *mine = &NB[(size_t) i * LCAP + NN[i]];
+  if (list_counts[i] + nf > LCAP) return false;
+  ListEntry *mine = &list_entries[(size_t) i * LCAP + list_counts[i]];
   for (int m = 0; m < nf; m++) {
     const int j = fj[m];
     const int8_t *k = shift[fc[m]];
@@ -119,35 +115,36 @@ bool EventDriven::list_build_t(int i)
     const int o[3] = {pk[0] + k[0] - qk[0], pk[1] + k[1] - qk[1], pk[2] + k[2] - qk[2]};
     for (int d = 0; d < 3; d++)
       if (o[d] < -127 || o[d] > 127) return false;
-    mine[m] = Entry{j, {(int8_t) o[0], (int8_t) o[1], (int8_t) o[2]}, 0};
+    mine[m] = ListEntry{j, {(int8_t) o[0], (int8_t) o[1], (int8_t) o[2]}, 0};
   }
   // (each j once per image: its own count is checked before it is entered)
   for (int m = 0; m < nf; m++) {
     const int j = fj[m];
-    if (NN[j] == LCAP) {
-      for (int r = 0; r < m; r++) NN[fj[r]]--;    // undo: i leaves the lists it entered
+    if (list_counts[j] == LCAP) {
+      for (int r = 0; r < m; r++) list_counts[fj[r]]--;    // undo: i leaves the lists it entered
       return false;
     }
     const int8_t *o = mine[m].o;
-    const int rj = NN[j]++;
-    NB[(size_t) j * LCAP + rj] = Entry{i, {(int8_t) -o[0], (int8_t) -o[1], (int8_t) -o[2]}, (uint8_t) (NN[i] + m)};
+    const int rj = list_counts[j]++;
+    list_entries[(size_t) j * LCAP + rj] =
+        ListEntry{i, {(int8_t) -o[0], (int8_t) -o[1], (int8_t) -o[2]}, (uint8_t) (list_counts[i] + m)};
     mine[m].r = (uint8_t) rj;
   }
-  NN[i] = (uint8_t) (NN[i] + nf);
+  list_counts[i] = (uint8_t) (list_counts[i] + nf);
   return true;
 }
 
-bool EventDriven::build_all_lists()
+bool EDCore::build_all_lists()
 {
-  std::fill(NN.begin(), NN.end(), 0);
-  for (int i = 0; i < (int) H.size(); i++)
-    if (!S[i].gone && !list_build(i, true)) return false;
+  std::fill(list_counts.begin(), list_counts.end(), 0);
+  for (int i = 0; i < (int) flights.size(); i++)
+    if (!schedules[i].gone && !list_build(i, true)) return false;
   return true;
 }
 
 // The rebuild event of particle i (at now): a new list around its position now. Its own
 // trajectory is untouched (its stored state is not advanced), so rebuilds change no rounding.
-void EventDriven::list_rebuild(int i)
+void EDCore::list_rebuild(int i)
 {
   count_crossing(i);
   list_drop(i);
@@ -167,14 +164,14 @@ void EventDriven::list_rebuild(int i)
 
 // A list would overflow (a very dense spot): from now on this system finds its candidates in
 // cells, as start() would set them up at this moment (every particle brought to now).
-void EventDriven::lists_to_cells()
+void EDCore::lists_to_cells()
 {
-  const int n = (int) H.size();
+  const int n = (int) flights.size();
   for (int i = 0; i < n; i++) advance(i, now);
   lists = false;
-  XW.clear();
-  NB.clear();
-  NN.clear();
+  list_centres.clear();
+  list_entries.clear();
+  list_counts.clear();
   setup_cells();
   predict_all();
   std::vector<double> times(n);
@@ -184,9 +181,9 @@ void EventDriven::lists_to_cells()
 
 // When i leaves the sphere of radius lskin around its list centre (moving now from xi at vi;
 // no gravity with lists)
-void EventDriven::predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi)
+void EDCore::predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  Sched &p = S[i];
+  Schedule &p = schedules[i];
   const Vec3 d = xi - list_centre(i);
   const double b = dot(d, vi), v2 = norm2(vi), c = norm2(d) - lskin * lskin;
   if (!(v2 > 0.0)) {
@@ -200,19 +197,19 @@ void EventDriven::predict_rebuild(int i, const Vec3 &xi, const Vec3 &vi)
 }
 
 // predict_all() with lists: rebuild times and walls per particle, each listed pair once
-void EventDriven::predict_all_lists()
+void EDCore::predict_all_lists()
 {
-  const int n = (int) H.size();
+  const int n = (int) flights.size();
   for (int i = 0; i < n; i++) {
-    if (S[i].gone) {
+    if (schedules[i].gone) {
       no_events(i);
       continue;
     }
     predict(i, false);
   }
   for (int i = 0; i < n; i++) {
-    const Entry *e = &NB[(size_t) i * LCAP];
-    for (int m = 0; m < NN[i]; m++)
+    const ListEntry *e = &list_entries[(size_t) i * LCAP];
+    for (int m = 0; m < list_counts[i]; m++)
       if (e[m].j > i) offer_both(i, e[m].j, e[m].o[0], e[m].o[1], e[m].o[2]);
   }
 }

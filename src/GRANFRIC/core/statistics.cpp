@@ -73,10 +73,10 @@ static void add_virial(double *w, const Vec3 &r, const Vec3 &dP)
   w[5] += r.y * dP.z;
 }
 
-void EventDriven::tally(int i, const Vec3 &r, const Vec3 &dP, double t, double dE_tr, double dE_rot,
+void EDCore::tally(int i, const Vec3 &r, const Vec3 &dP, double t, double dE_tr, double dE_rot,
                         bool wall)
 {
-  ParticleTally &p = PT[ext[i]];
+  EDParticleTally &p = tallies[ext[i]];
   add_virial(p.virial, r, dP);
   if (wall) {
     p.wall_collisions += 1.0;
@@ -94,7 +94,7 @@ void EventDriven::tally(int i, const Vec3 &r, const Vec3 &dP, double t, double d
 // bodies before, c the law's result, ni and nj their collisions in this window. Tallies of
 // both, the history (for domain windows), and, where the collision is booked (where i is
 // counted; without an accounting: always), the statistics and the collision log.
-void EventDriven::record_pair(int i, int j, double t, const Vec3 &r, const Vec3 &n, const Body &b1,
+void EDCore::record_pair(int i, int j, double t, const Vec3 &r, const Vec3 &n, const Body &b1,
                               const Body &b2, const Collision &c, bool tc_elastic, long ni, long nj)
 {
   if (tally_on) {    // (r (x) dP is the same seen from j: -r (x) -dP)
@@ -128,10 +128,10 @@ void EventDriven::record_pair(int i, int j, double t, const Vec3 &r, const Vec3 
 // on the particle, c the result (c.dE in the lab frame), dE_tr and dE_rot the particle's energy
 // changes, ni its collisions in this window. Its tally, the history, and, where the particle is
 // counted, the statistics, the wall's own sums and the collision log.
-void EventDriven::record_wall(int i, int k, double t, const Vec3 &n, const Vec3 &dP,
+void EDCore::record_wall(int i, int k, double t, const Vec3 &n, const Vec3 &dP,
                               const Collision &c, double dE_tr, double dE_rot, bool tc_elastic, long ni)
 {
-  const double a = H[i].a;
+  const double a = flights[i].a;
   if (tally_on) tally(i, a * n, dP, t, dE_tr, dE_rot, true);
   if (history && (!record_only || record_only[ext[i]]))
     history->push_back({t, ext[i], -1 - k, c.v1, c.w1, Vec3(), Vec3()});

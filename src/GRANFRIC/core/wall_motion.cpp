@@ -182,10 +182,10 @@ static double vibrating_contact(const EDWall &w, double clock, double now, doubl
 
 // the first contact of particle i with each wall, from its stored state (x, v at its own
 // time): the same number whenever it is predicted; not before now
-void EventDriven::predict_walls(int i)
+void EDCore::predict_walls(int i)
 {
-  Sched &p = S[i];
-  const Hot &h = H[i];
+  Schedule &p = schedules[i];
+  const Flight &h = flights[i];
   const double a = h.a, tb = h.t;
   for (int k = 0; k < (int) opt.walls.size(); k++) {
     const EDWall &w = opt.walls[k];
@@ -199,8 +199,8 @@ void EventDriven::predict_walls(int i)
     else
       t = tb + (w.side < 0 ? crossing_time(x, v, g, w.pos + a, -1) : crossing_time(x, v, g, w.pos - a, +1));
     if (t < now) t = now;
-    if (t < WT[i]) {
-      WT[i] = t;
+    if (t < wall_times[i]) {
+      wall_times[i] = t;
       p.wall = (int8_t) k;
     }
   }

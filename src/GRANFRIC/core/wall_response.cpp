@@ -13,7 +13,7 @@
 
 namespace granfric {
 
-Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t)
+Collision EDCore::thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t)
 {
   const EDParticleView p = view(i);
   uint64_t tbits;
@@ -39,12 +39,12 @@ Collision EventDriven::thermal_reemission(const EDWall &w, int i, const Vec3 &n,
   return c;
 }
 
-void EventDriven::collide_wall(int i)
+void EDCore::collide_wall(int i)
 {
-  Hot &h = H[i];
-  Cold &p = C[i];
-  Sched &s = S[i];
-  const double t = WT[i];
+  Flight &h = flights[i];
+  Collider &p = colliders[i];
+  Schedule &s = schedules[i];
+  const double t = wall_times[i];
   advance(i, t);
   const EDWall &w = opt.walls[s.wall];
   Vec3 n;
@@ -73,7 +73,7 @@ void EventDriven::collide_wall(int i)
   const Vec3 dP = p.m * (c.v1 - h.v);    // (a thermal wall's too)
   h.v = c.v1;
   p.w = c.w1;
-  if (!TL.empty()) TL[i] = t;
+  if (!last_collision.empty()) last_collision[i] = t;
   if (tracking_fast()) note_speed(i, h.v);
   turned(i);
   p.last_partner = -1;
@@ -84,7 +84,7 @@ void EventDriven::collide_wall(int i)
     s << "particle " << ext[i] << " collided " << ni << " times within one window (cap "
       << opt.max_collisions << "), the last time with a wall: inelastic collapse; use the TC "
       << "model (tc) or a larger cap";
-    throw EventCapError(s.str(), ext[i], -1 - (int) S[i].wall, t, ni);
+    throw EventCapError(s.str(), ext[i], -1 - (int) schedules[i].wall, t, ni);
   }
   predict(i);
   reschedule(i);
