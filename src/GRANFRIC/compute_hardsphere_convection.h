@@ -1,9 +1,14 @@
 /* -*- c++ -*- ----------------------------------------------------------
    SPDX-License-Identifier: GPL-2.0-or-later
    Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
-   GRANFRIC: compute ID group hardsphere/convection
-   global vector (Risso et al. 2005, eqs 10-11), x measured from the lower box edge:
-     Psi1 = (1/N) sum v_y sin(2 pi x / L_x),  Psi2 = -(1/N) sum v_y cos(2 pi x / L_x)
+   GRANFRIC: compute ID group hardsphere/convection [vertical gravity|x|y|z]
+
+   The convection order parameters of Risso et al. 2005 (eqs 10-11) along each horizontal
+   axis h, with v_up the velocity component along the vertical (upward: against gravity) and
+   x_h measured from the box's lower edge in h:
+     Psi1_h = (1/N) sum v_up sin(2 pi x_h / L_h),  Psi2_h = -(1/N) sum v_up cos(2 pi x_h / L_h)
+   A global vector of 2 values in 2d (the one horizontal axis), 4 in 3d (the two horizontal
+   axes in the order x, y, z).
 ------------------------------------------------------------------------- */
 
 #ifdef COMPUTE_CLASS
@@ -27,8 +32,14 @@ class ComputeHardsphereConvection : public Compute {
  public:
   ComputeHardsphereConvection(class LAMMPS *, int, char **);
   ~ComputeHardsphereConvection() override;
-  void init() override {}
+  void init() override;
   void compute_vector() override;
+
+ private:
+  int asked = -1;        // keyword vertical: an axis 0, 1, 2, or -1 (from gravity)
+  int up = 1;            // the vertical axis (set by init)
+  double sign = 1.0;     // +1: upward is +up, -1: upward is -up
+  int horizontal[2] = {0, 2}, nh = 1;    // the horizontal axes of the simulation
 };
 
 }    // namespace LAMMPS_NS

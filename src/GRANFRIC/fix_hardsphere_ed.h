@@ -82,6 +82,8 @@ class FixHardsphereED : public Fix {
   const granfric::EDStats &cumulative() const { return run->cum; }
   // elapsed simulated time covered by cumulative()
   double cumulative_time() const { return run->cum_time; }
+  // the gravity keyword's vector (3 values)
+  const double *gravity() const { return run->settings.gravity; }
   // a compute asks for impact-angle histograms with this many bins (one size per fix)
   void request_gamma_bins(int nbins);
   // one collision of the last step, for per-collision output: absolute time, the atoms' IDs and

@@ -1101,7 +1101,38 @@ TEST(ComputeConvection, OneAndTwoRolls)
   EXPECT_NEAR(c->vector[0], 0.0, 1e-12);
   EXPECT_NEAR(c->vector[1], 0.15, 1e-12);
   EXPECT_LMP_ERROR(lmp.get(), "compute d all hardsphere/convection 3",
-                   "takes no arguments after the style name \\(1 given\\)");
+                   "Unknown compute hardsphere/convection keyword: 3 \\(allowed: vertical\\)");
+}
+
+// In 3d the vertical axis comes from gravity (upward against it) or the keyword, and each
+// horizontal axis has its own pair of order parameters
+TEST(ComputeConvection, ThreeDimensionsFollowGravity)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\natom_style sphere\ncomm_modify vel yes\n"
+                 "region box block -3 7 0 4 0 4\ncreate_box 1 box\n"
+                 "lattice sc 1.0\ncreate_atoms 1 box\nset type 1 diameter 0.9\nset type 1 mass 1.0\n"
+                 "pair_style hardsphere/rough\npair_coeff * * 0.9 0.0\n"
+                 "variable vz atom 0.3*sin(2*PI*(x+3)/10)\n"
+                 "velocity all set 0.0 0.0 v_vz\nfix ed all hardsphere/ed gravity 0 0 -1\n"
+                 "compute c all hardsphere/convection\ncompute v all hardsphere/convection vertical x\n"
+                 "thermo_style custom step c_c[1] c_v[1]\nrun 0 post no");
+  auto *c = lmp->modify->get_compute_by_id("c");
+  ASSERT_EQ(c->size_vector, 4);
+  c->compute_vector();
+  EXPECT_NEAR(c->vector[0], 0.15, 1e-12);    // along x: <0.3 sin^2> = 0.15
+  EXPECT_NEAR(c->vector[1], 0.0, 1e-12);
+  EXPECT_NEAR(c->vector[2], 0.0, 1e-12);     // along y: v_z does not vary with y
+  EXPECT_NEAR(c->vector[3], 0.0, 1e-12);
+  auto *v = lmp->modify->get_compute_by_id("v");    // (x vertical: v_x = 0 everywhere)
+  v->compute_vector();
+  for (int k = 0; k < 4; k++) EXPECT_EQ(v->vector[k], 0.0);
+  // gravity upward: the upward velocity is -v_z
+  run(lmp.get(), "unfix ed\nfix ed all hardsphere/ed gravity 0 0 1\nrun 0 post no");
+  c->compute_vector();
+  EXPECT_NEAR(c->vector[0], -0.15, 1e-12);
+  run(lmp.get(), "unfix ed\nfix ed all hardsphere/ed\n");
+  EXPECT_LMP_ERROR(lmp.get(), "run 0 post no", "in 3d needs a vertical axis");
 }
 
 TEST_F(FixErrors, Computes)
