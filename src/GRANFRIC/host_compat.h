@@ -58,8 +58,8 @@ constexpr const char *GHOST_VELOCITY = "comm_modify vel yes";
 inline bool changes_box(const Fix *f) { return (f->box_change & ~Fix::BOX_CHANGE_DOMAIN) != 0; }
 // does fix f move the subdomains' boundaries during a run (fix balance)?
 inline bool moves_subdomains(const Fix *f) { return (f->box_change & Fix::BOX_CHANGE_DOMAIN) != 0; }
-// the command being run (LIGGGHTS keeps it protected: null there), and whether neigh_modify
-// exclude removed pairs from the neighbour lists (LIGGGHTS keeps that protected: false there)
+// the command being run, and whether neigh_modify exclude removed pairs from the neighbour
+// lists
 inline const char *running_command(const Input *input) { return input->command; }
 inline bool pairs_excluded(const Neighbor *neighbor)
 {
@@ -84,8 +84,10 @@ inline bool changes_box(const Fix *f)
   return f->box_change_size || f->box_change_shape;
 }
 inline bool moves_subdomains(const Fix *f) { return f->box_change_domain != 0; }
+// (LIGGGHTS 3.8 has no rerun command; the exclusion counts are protected: the LIGGGHTS host
+// program reads them, see src/liggghts/granfric_liggghts.cpp)
 inline const char *running_command(const Input *) { return nullptr; }
-inline bool pairs_excluded(const Neighbor *) { return false; }
+bool pairs_excluded(const Neighbor *neighbor);
 #define GRANFRIC_EV_INIT(eflag, vflag) \
   do {                                 \
     if (eflag || vflag)                \

@@ -11,6 +11,8 @@
 #include "force.h"
 #include "input.h"
 #include "modify.h"
+#include "neighbor.h"
+#include "host_compat.h"
 
 #include "granfric_styles.h"
 
@@ -27,7 +29,8 @@ using ComputeTable = std::map<std::string, Compute *(*) (LAMMPS *, int, int, cha
 
 /* ----------------------------------------------------------------------
    private_style_tables(modify): the tables of fix and compute styles of LIGGGHTS's Modify,
-   which are private; with Reach and its two tags just before it, the only code that reaches a
+   which are private; with Reach and its tags just before it (and pairs_excluded below, which
+   reads Neighbor's protected exclusion counts the same way), the only code that reaches a
    private member of LIGGGHTS.
    Why: LIGGGHTS 3.8 has no plugin interface and no call that adds a style; its styles are
    compiled into the tables from its own style_*.h. Force::pair_map is public, but
@@ -56,8 +59,23 @@ struct ComputeTag {
   using type = ComputeTable *Modify::*;
   friend type table(ComputeTag);
 };
+struct ExcludeTag {
+  using type = int Neighbor::*;
+  friend type table(ExcludeTag);
+};
+struct GroupExcludeTag {
+  using type = int Neighbor::*;
+  friend type table(GroupExcludeTag);
+};
+struct MolExcludeTag {
+  using type = int Neighbor::*;
+  friend type table(MolExcludeTag);
+};
 template struct Reach<FixTag, &Modify::fix_map>;
 template struct Reach<ComputeTag, &Modify::compute_map>;
+template struct Reach<ExcludeTag, &Neighbor::nex_type>;
+template struct Reach<GroupExcludeTag, &Neighbor::nex_group>;
+template struct Reach<MolExcludeTag, &Neighbor::nex_mol>;
 
 struct ModifyTables {
   FixTable &fixes;
@@ -68,6 +86,19 @@ ModifyTables private_style_tables(Modify *modify)
 {
   return {*(modify->*table(FixTag())), *(modify->*table(ComputeTag()))};
 }
+
+}    // namespace
+
+// (declared in host_compat.h) whether neigh_modify exclude removed pairs from the neighbour
+// lists: the counts of its type, group and molecule exclusions, which LIGGGHTS keeps
+// protected, read through Reach as the style tables are (the same reasons, the same risks)
+bool LAMMPS_NS::host::pairs_excluded(const Neighbor *neighbor)
+{
+  return neighbor->*table(ExcludeTag()) + neighbor->*table(GroupExcludeTag()) +
+      neighbor->*table(MolExcludeTag()) > 0;
+}
+
+namespace {
 
 template <class P>
 Pair *pair_creator(LAMMPS *lmp)

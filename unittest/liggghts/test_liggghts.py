@@ -11,7 +11,7 @@ wrap atoms into the box at every step: with their default reneighboring schedule
 differ, positions as the hosts keep them differ in the last bits while the trajectory, which
 goes on from the fix's stored states, is the same). Under either host a
 run continued from a restart file ends where the writing run ends. LIGGGHTS's soft granular
-walls and pair styles are refused next to fix hardsphere/ed. A bad keyword is
+walls and pair styles are refused next to fix hardsphere/ed, and pair exclusions warned. A bad keyword is
 refused under LIGGGHTS with GRANFRIC's own message (LIGGGHTS 3.8 follows its error lines with a
 line of stray bytes, decoded leniently here).
 """
@@ -164,3 +164,33 @@ def test_bad_keyword_refused_with_granfrics_message(tmp_path):
                        errors="replace")
     assert p.returncode != 0
     assert "ERROR" in p.stdout and "hardsphere/ed" in p.stdout and "bogus" in p.stdout, p.stdout[-2000:]
+
+
+def test_pair_exclusions_warned_under_liggghts(tmp_path):
+    """neigh_modify exclude removes no collision of hard particles: warned, as under LAMMPS
+    (LIGGGHTS keeps its exclusion counts protected; the host program reads them)"""
+    path = tmp_path / "in.exclude"
+    path.write_text("""units lj
+dimension 2
+atom_style sphere
+communicate single vel yes
+boundary p p p
+region box block 0 10 0 10 -0.5 0.5 units box
+create_box 1 box
+create_atoms 1 single 2 5 0
+create_atoms 1 single 6 5 0
+set group all diameter 1.0
+set group all mass 1.0
+pair_style hardsphere/rough inertia disc
+pair_coeff * * 0.9 0.0
+fix ed all hardsphere/ed
+timestep 0.1
+""" + "{}run 1\n")
+    text = path.read_text()
+    warning = "WARNING: neigh_modify exclude has no effect on fix hardsphere/ed ed"
+    for exclude in ("", "neigh_modify exclude type 1 1\n"):
+        path.write_text(text.replace("{}", exclude))
+        p = subprocess.run([HOSTS[1], "-in", str(path), "-log", "none"], cwd=str(tmp_path),
+                           capture_output=True, text=True, errors="replace")
+        assert p.returncode == 0, p.stdout[-2000:]
+        assert (warning in p.stdout) == bool(exclude), p.stdout[-2000:]
