@@ -17,6 +17,7 @@
 #include "pair_hardsphere.h"
 #include "update.h"
 
+#include <cmath>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -82,9 +83,14 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "Fix hardsphere/wall thermal T = {} must be >= 0", temperature);
       if (seed <= 0) error->all(FLERR, "Fix hardsphere/wall thermal seed = {} must be > 0", seed);
       iarg += 3;
+    } else if (strcmp(arg[iarg], "slide") == 0) {
+      if (iarg + 4 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/wall slide vx vy vz", error);
+      for (int d = 0; d < 3; d++) slide[d] = utils::numeric(FLERR, arg[iarg + 1 + d], false, lmp);
+      check_slide(face);
+      iarg += 4;
     } else {
       error->all(FLERR, "Unknown fix hardsphere/wall keyword: {} (allowed: coeffs, thermal, "
-                 "vibrate)", arg[iarg]);
+                 "vibrate, slide)", arg[iarg]);
     }
   }
   if (amplitude > 0.0 && temperature >= 0.0)
@@ -94,6 +100,22 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
+}
+
+// a wall slides within its plane (in 2d within the x-y plane), at a finite speed
+void FixHardsphereWall::check_slide(const std::string &face) const
+{
+  for (int d = 0; d < 3; d++)
+    if (!std::isfinite(slide[d]))
+      error->all(FLERR, "Fix hardsphere/wall slide velocity ({}, {}, {}) must be finite", slide[0],
+                 slide[1], slide[2]);
+  if (slide[dim] != 0.0)
+    error->all(FLERR, "Fix hardsphere/wall slide velocity ({}, {}, {}) has a component v{} = {} "
+               "along the normal of face {}: a wall slides within its plane (to move it along its "
+               "normal, use vibrate)", slide[0], slide[1], slide[2], "xyz"[dim], slide[dim], face);
+  if (domain->dimension == 2 && slide[2] != 0.0)
+    error->all(FLERR, "Fix hardsphere/wall slide velocity ({}, {}, {}) has vz = {} in a 2d "
+               "simulation: a wall slides within the x-y plane", slide[0], slide[1], slide[2], slide[2]);
 }
 
 int FixHardsphereWall::setmask()
@@ -149,6 +171,7 @@ granfric::EDWall FixHardsphereWall::geometry() const
   w.A = amplitude;
   w.omega = omega;
   w.sine = sine;
+  w.slide = granfric::Vec3(slide[0], slide[1], slide[2]);
   return w;
 }
 

@@ -120,6 +120,7 @@ struct CoreRun {
       e.A = w.A;
       e.omega = w.omega;
       e.sine = w.sine;
+      e.slide = w.slide;
       o.walls.push_back(e);
     }
     // the core keeps the shape factor per type: the reference's particles give it

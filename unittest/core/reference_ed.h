@@ -37,6 +37,7 @@ struct RefWall {
   LawParams law;
   double A = 0.0, omega = 0.0;    // vibrating lower wall: piecewise-parabolic sinusoid mimic
   bool sine = false;              //   or the sinusoid itself
+  Vec3 slide;                     // velocity within the wall's plane
   // the motion, written here independently of the core: on half period k (length pi/omega) the
   // wall rises and falls back (k even) or dips and comes back (k odd) with constant |acceleration|
   // 8 A omega^2 / pi^2, reaching pos +- A at mid-period
@@ -214,7 +215,7 @@ struct Reference {
         LawParams law = w.law;
         const double sa = time - a.t_last;
         if (tc > 0 && sa >= 0 && sa < tc) law = law.elastic();
-        Vec3 vwall;
+        Vec3 vwall = w.slide;
         vwall[w.dim] = w.speed(time);
         const Collision c = collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body::wall(vwall), nn);
         tally_virial(a.a * nn, a.m * (c.v1 - a.v));

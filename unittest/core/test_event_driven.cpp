@@ -596,6 +596,142 @@ TEST(EventDriven, WallsEqualReferenceAndHold)
     }
 }
 
+// Walls sliding within their planes in opposite directions (a Couette cell) under each law:
+// event by event equal to the reference, and the momentum books close: what the particles
+// gained along the walls is what the walls lost (the walls' impulses), and the energy the
+// walls gave is the gas's kinetic energy change less the pair collisions' dissipation
+TEST(EventDriven, SlidingWallsEqualReferenceAndBalance)
+{
+  for (int law = 0; law < 3; law++)
+    for (int dim = 2; dim <= 3; dim++) {
+      SystemSpec s;
+      s.n = 80;
+      s.dim = dim;
+      s.phi = 0.2;
+      s.seed = 41 + law * 2 + dim;
+      Reference ref = make_system(s, law_of(law));
+      ref.periodic[1] = false;
+      RefWall lo{1, -1, ref.lo.y - 0.6, law_of(law)}, hi{1, +1, ref.lo.y + ref.L.y + 0.6, law_of(law)};
+      lo.slide = dim == 2 ? Vec3(-0.7, 0.0, 0.0) : Vec3(-0.7, 0.0, 0.3);
+      hi.slide = Vec3(0.7, 0.0, 0.0);
+      ref.walls.push_back(lo);
+      ref.walls.push_back(hi);
+      const double mft = mean_free_time(ref);
+      CoreRun run(ref);
+      run.ed.start();
+      Vec3 p0;
+      double e0 = 0.0;
+      for (int i = 0; i < run.ed.size(); i++) {
+        const auto q = run.ed.particle(i);
+        p0 += q.m * run.ed.velocity(i, 0.0);
+        e0 += 0.5 * q.m * norm2(run.ed.velocity(i, 0.0)) + 0.5 * q.q * q.m * q.a * q.a * norm2(q.w);
+      }
+      const double dt = 0.55 * mft;
+      const int nwin = 9;
+      for (int w = 0; w < nwin; w++) {
+        run.total.add(run.ed.advance_to(dt));
+        run.ed.rebase(dt);
+      }
+      ref.run_until(nwin * dt);
+      EXPECT_GT(run.total.wall_collisions, 10);
+      EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
+      EXPECT_EQ(run.total.collisions, ref.collisions);
+      expect_same_virial(ref, run.total);
+      Vec3 p1;
+      double e1 = 0.0;
+      for (size_t i = 0; i < ref.p.size(); i++) {
+        EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+        EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+        const auto q = run.ed.particle((int) i);
+        p1 += q.m * run.ed.velocity((int) i, 0.0);
+        e1 += 0.5 * q.m * norm2(run.ed.velocity((int) i, 0.0)) + 0.5 * q.q * q.m * q.a * q.a * norm2(q.w);
+      }
+      // (no gravity: the particles' momentum changes by the walls' impulses only)
+      const std::vector<double> &J = run.total.wall_impulse;
+      for (int d = 0; d < 3; d++) EXPECT_NEAR(p1[d] - p0[d], -(J[d] + J[3 + d]), 1e-9) << "momentum " << d;
+      EXPECT_NE(J[0], 0.0);    // (the walls drag the gas along x)
+      const double work = run.total.wall_work[0] + run.total.wall_work[1];
+      EXPECT_NEAR(e1 - e0, work + run.total.dE, 1e-9 * (1.0 + e0));
+      EXPECT_NEAR(run.total.dE_wall, work, 1e-9 * (1.0 + e0));
+    }
+}
+
+// Two thermal walls at one temperature sliding at the same velocity carry an elastic gas
+// along: it takes their velocity as its mean and their temperature about it
+TEST(EventDriven, SlidingThermalWallsCarryTheGas)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = dim == 2 ? 300 : 400;
+    s.dim = dim;
+    s.phi = 0.1;
+    s.seed = 7 + dim;
+    Reference ref = make_system(s, LawParams::rough(1.0, -1.0));
+    ref.periodic[1] = false;
+    ref.walls.push_back({1, -1, ref.lo.y - 0.6, LawParams::rough(1.0, -1.0)});
+    ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, LawParams::rough(1.0, -1.0)});
+    CoreRun run(ref);
+    EDOptions o = run.ed.options();
+    const Vec3 u(1.5, 0.0, dim == 2 ? 0.0 : -0.5);
+    for (int k = 0; k < 2; k++) {
+      o.walls[k].T = 1.0;
+      o.walls[k].seed = 17 + k;
+      o.walls[k].slide = u;
+    }
+    run.ed.configure(o, ref.ntypes, ref.laws);
+    run.ed.start();
+    Vec3 mean;
+    double temp = 0.0;
+    int nsample = 0;
+    // (the gas starts at rest: it heats up as the walls accelerate it, and the walls take the
+    // heat back over some hundred windows; sampled after 1000, as ThermalWallEquilibratesTheGas)
+    for (int w = 0; w < 2000; w++) {
+      run.total.add(run.ed.advance_to(1.0));
+      run.ed.rebase(1.0);
+      if (w < 1000) continue;
+      // (the particles' masses differ: the mean velocity is the momentum per mass)
+      Vec3 m;
+      double mass = 0.0;
+      for (int i = 0; i < run.ed.size(); i++) {
+        m += run.ed.particle(i).m * run.ed.velocity(i, 0.0);
+        mass += run.ed.particle(i).m;
+      }
+      m = (1.0 / mass) * m;
+      double t = 0.0;
+      for (int i = 0; i < run.ed.size(); i++)
+        t += run.ed.particle(i).m * norm2(run.ed.velocity(i, 0.0) - m) / (dim * s.n);
+      mean += m;
+      temp += t;
+      nsample++;
+    }
+    mean = (1.0 / nsample) * mean;
+    EXPECT_GT(run.total.wall_collisions, 1000);
+    EXPECT_NEAR(mean.x, u.x, 0.05) << dim << "D";
+    EXPECT_NEAR(mean.z, u.z, 0.05) << dim << "D";
+    EXPECT_NEAR(temp / nsample, 1.0, 0.05) << dim << "D";
+  }
+}
+
+// a sliding velocity with a component along the wall's normal, or along z in 2d: refused
+TEST(EventDriven, SlidingOutOfThePlaneRefused)
+{
+  SystemSpec s;
+  s.n = 20;
+  s.dim = 2;
+  s.phi = 0.2;
+  Reference ref = make_system(s, LawParams::rough(0.9, 0.0));
+  ref.periodic[1] = false;
+  ref.walls.push_back({1, -1, ref.lo.y - 0.6, LawParams::rough(0.9, 0.0)});
+  CoreRun run(ref);
+  EDOptions o = run.ed.options();
+  o.walls[0].slide = Vec3(0.0, 1.0, 0.0);
+  EXPECT_THROW(run.ed.configure(o, ref.ntypes, ref.laws), std::invalid_argument);
+  o.walls[0].slide = Vec3(1.0, 0.0, 1.0);
+  EXPECT_THROW(run.ed.configure(o, ref.ntypes, ref.laws), std::invalid_argument);
+  o.walls[0].slide = Vec3(1.0, 0.0, 0.0);
+  EXPECT_NO_THROW(run.ed.configure(o, ref.ntypes, ref.laws));
+}
+
 // a thermal wall brings an elastic rough gas to its temperature, translational and rotational
 // (detailed balance of the flux Maxwellian); the opposite wall is elastic
 // a bed on a vibrating base (piecewise-parabolic motion) under gravity: event by event equal to

@@ -951,6 +951,58 @@ TEST(FixHardsphereWall, BaseCarriesTheBedsWeight)
   }
 }
 
+// A disc falling straight onto a rough floor that slides along x: the rough law acts on the
+// velocity relative to the floor's surface, so the disc leaves with the floor's share of its
+// tangential motion (v_x = (1 + beta) q / (1 + q) u, spin to match), and the floor feels the
+// opposite impulse
+TEST(FixHardsphereWall, SlidingFloorDragsAnAtom)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\nboundary p f p\n"
+                 "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 3 0\n"
+                 "set group all diameter 1.0\nset group all mass 1.0\nvelocity all set 0.0 -1.0 0.0\n"
+                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.8 0.2\n"
+                 "fix ed all hardsphere/ed\nfix floor all hardsphere/wall ylo 0.0 slide 2.0 0.0 0.0\n"
+                 "timestep 1.0\nthermo 0\nrun 4 post no");
+  const double q = 0.5, beta = 0.2, u = 2.0;
+  const double vx = (1.0 + beta) * q / (1.0 + q) * u;
+  EXPECT_NEAR(lmp->atom->v[0][0], vx, 1e-12);
+  EXPECT_NEAR(lmp->atom->v[0][1], 0.8, 1e-12);
+  // (the impulse along +x at the contact point below the centre spins the disc counterclockwise:
+  // d omega = a dp / (q m a^2))
+  EXPECT_NEAR(lmp->atom->omega[0][2], 2.0 * vx / (q * 1.0), 1e-12);
+  auto *floor = lmp->modify->get_fix_by_id("floor");
+  EXPECT_EQ(floor->compute_vector(8), 1.0);
+  // (momentum given to the floor over the 4 time units since it was defined)
+  EXPECT_NEAR(floor->compute_vector(5) * 4.0, -vx, 1e-12);
+  EXPECT_NEAR(floor->compute_vector(6) * 4.0, -1.8, 1e-12);
+  EXPECT_NEAR(floor->compute_vector(9), 0.5 * (vx * vx + 0.64 - 1.0) + 0.5 * q * 0.25 *
+              lmp->atom->omega[0][2] * lmp->atom->omega[0][2], 1e-12);
+}
+
+// A Couette cell: the floor and the lid slide in opposite directions; in the steady state the
+// momentum the lid gives the gas along x is what the floor takes (the wall forces balance),
+// and the shear force is nonzero
+TEST(FixHardsphereWall, CouetteWallForcesBalance)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), walled_gas(150, 20.0, 37, "f") +
+                     "pair_style hardsphere/rough inertia disc\npair_coeff * * 1.0 -1.0\n"
+                     "fix ed all hardsphere/ed\n"
+                     "fix floor all hardsphere/wall ylo EDGE thermal 1.0 4099 slide -0.5 0.0 0.0\n"
+                     "fix lid all hardsphere/wall yhi EDGE thermal 1.0 4111 slide 0.5 0.0 0.0\n"
+                     "timestep 0.5\nthermo 0\nrun 400 post no\n"
+                     "unfix floor\nunfix lid\n"
+                     "fix floor all hardsphere/wall ylo EDGE thermal 1.0 4099 slide -0.5 0.0 0.0\n"
+                     "fix lid all hardsphere/wall yhi EDGE thermal 1.0 4111 slide 0.5 0.0 0.0\n"
+                     "run 2000 post no");
+  auto *floor = lmp->modify->get_fix_by_id("floor"), *lid = lmp->modify->get_fix_by_id("lid");
+  const double ffloor = floor->compute_vector(5), flid = lid->compute_vector(5);
+  EXPECT_GT(ffloor, 0.0) << "the gas drags the floor toward +x";
+  EXPECT_LT(flid, 0.0) << "and the lid toward -x";
+  EXPECT_NEAR(ffloor + flid, 0.0, 0.1 * ffloor);
+}
+
 // the floor's totals (collisions, momentum and energy exchanged, time) continue across a restart
 TEST(FixHardsphereWall, TotalsKeptInRestartFiles)
 {
@@ -1054,7 +1106,7 @@ TEST_F(FixErrors, Wall)
   // (a fix whose constructor failed leaves its ID half-defined in LAMMPS: use fresh IDs)
   EXPECT_LMP_ERROR(l.get(), "fix w1 all hardsphere/wall ylo abc", "Expected floating point");
   EXPECT_LMP_ERROR(l.get(), "fix w2 all hardsphere/wall ylo EDGE spin 3",
-                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal, vibrate\\)");
+                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal, vibrate, slide\\)");
   EXPECT_LMP_ERROR(l.get(), "fix w8 all hardsphere/wall ylo EDGE thermal -1 5", "thermal T = -1 must be >= 0");
   EXPECT_LMP_ERROR(l.get(), "fix w11 all hardsphere/wall ylo EDGE vibrate square 0.1 10",
                    "vibrate square is not available \\(allowed: sine, parabolic\\)");

@@ -71,8 +71,19 @@ struct EDWall {
   double A = 0.0, omega = 0.0;
   bool sine = false;              // true: pos + A sin(omega t) itself (contacts by safe search)
   bool vibrating() const { return A > 0.0 && omega > 0.0; }
-  // the wall's largest speed: A omega (sine), 4 A omega / pi (parabolic), 0 (static)
-  double speed_bound() const { return !vibrating() ? 0.0 : sine ? A * omega : 4.0 * A * omega / M_PI; }
+  // a constant velocity within the wall's plane (its component along dim is 0): the plane
+  // stays where it is, so contact times do not change; the collision law acts on the velocity
+  // relative to the wall's surface, and a thermal wall re-emits from the Maxwellian of the
+  // moving wall
+  Vec3 slide;
+  bool sliding() const { return slide.x != 0.0 || slide.y != 0.0 || slide.z != 0.0; }
+  bool moving() const { return vibrating() || sliding(); }
+  // the wall's largest speed: A omega (sine), 4 A omega / pi (parabolic), 0 (static), plus the
+  // sliding speed
+  double speed_bound() const
+  {
+    return (!vibrating() ? 0.0 : sine ? A * omega : 4.0 * A * omega / M_PI) + norm(slide);
+  }
   // position, velocity and acceleration at absolute time s
   void motion(double s, double &w, double &vw, double &aw) const;
 
@@ -83,6 +94,7 @@ struct EDWall {
   {
     f("dim", s.dim...), f("side", s.side...), f("pos", s.pos...), f("laws", s.laws...);
     f("T", s.T...), f("seed", s.seed...), f("A", s.A...), f("omega", s.omega...), f("sine", s.sine...);
+    f("slide", s.slide...);
   }
 };
 

@@ -5,6 +5,8 @@
 // (EDOptions::each_field), whether two configurations are the same and a description.
 #include "event_driven.h"
 
+#include <cmath>
+
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
@@ -43,6 +45,8 @@ static void check_options(const EDOptions &o, int nt, const std::vector<LawParam
     if (o.periodic[w.dim]) throw std::invalid_argument("walls must be in non-periodic dimensions");
     if ((int) w.laws.size() != nt + 1)
       throw std::invalid_argument("wall law table must have ntypes+1 entries");
+    if (w.slide[w.dim] != 0.0 || (o.dim == 2 && w.slide.z != 0.0) || !std::isfinite(norm2(w.slide)))
+      throw std::invalid_argument("a wall slides within its plane (and within the x-y plane in 2d), at a finite speed");
     walled[w.dim] = true;
   }
   if (o.walls.size() > 100) throw std::invalid_argument("at most 100 walls");

@@ -27,6 +27,7 @@ Collision EDCore::thermal_reemission(const EDWall &w, int i, const Vec3 &n, doub
   for (int d = 0; d < 3; d++)
     if (d != w.dim && d < opt.dim) v[d] = sv * gauss();
   v[w.dim] = n[w.dim] * sv * gauss_radius(uniform());    // flux: v_n exp(-v_n^2/2)
+  v += w.slide;                                           // (the wall's frame)
   Vec3 wv;
   if (opt.dim == 2)
     wv.z = sw * gauss();
@@ -60,7 +61,7 @@ void EDCore::collide_wall(int i)
   } else {
     double ww, vw, aw;
     w.motion(clock + t, ww, vw, aw);
-    Vec3 vwall;
+    Vec3 vwall = w.slide;
     vwall[w.dim] = vw;
     c = collide(law, b, Body::wall(vwall), n);
   }
@@ -69,7 +70,7 @@ void EDCore::collide_wall(int i)
   const double dE_tr = 0.5 * p.m * (norm2(c.v1) - norm2(h.v));
   const double dE_rot = 0.5 * q * p.m * h.a * h.a * (norm2(c.w1) - norm2(p.w));
   const double dE = dE_tr + dE_rot;
-  c.dE = w.vibrating() ? dE : c.dE;
+  c.dE = w.moving() ? dE : c.dE;
   const Vec3 dP = p.m * (c.v1 - h.v);    // (a thermal wall's too)
   h.v = c.v1;
   p.w = c.w1;
