@@ -551,23 +551,58 @@ TEST(Kicks, ScheduleFollowsTheTime)
   }
 }
 
+// A gas of 80 particles under law `law` between a floor and a lid (y), each half a diameter
+// beyond the particles' range, periodic in x (and z); walls with the laws lo_law and hi_law
+Reference walled_system(int law, int dim, unsigned seed, int lo_law, int hi_law)
+{
+  SystemSpec s;
+  s.n = 80;
+  s.dim = dim;
+  s.phi = 0.2;
+  s.seed = seed;
+  Reference ref = make_system(s, law_of(law));
+  ref.periodic[1] = false;
+  ref.walls.push_back({1, -1, ref.lo.y - 0.6, law_of(lo_law)});
+  ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, law_of(hi_law)});
+  return ref;
+}
+
+// nwin windows of length dt, then the reference to the same time: the same collisions, the
+// same states to 1e-9 and the same virial
+void expect_windows_equal_reference(Reference &ref, CoreRun &run, double dt, int nwin)
+{
+  ref.run_until(nwin * dt);
+  EXPECT_GT(run.total.wall_collisions, 10);
+  EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
+  EXPECT_EQ(run.total.collisions, ref.collisions);
+  expect_same_virial(ref, run.total);
+  for (size_t i = 0; i < ref.p.size(); i++) {
+    EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+    EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+  }
+}
+
+// the particles' momentum and kinetic energy (translation and rotation) at window time 0
+void momentum_and_energy(const EventDriven &ed, Vec3 &p, double &e)
+{
+  p = Vec3();
+  e = 0.0;
+  for (int i = 0; i < ed.size(); i++) {
+    const auto q = ed.particle(i);
+    const Vec3 v = ed.velocity(i, 0.0);
+    p += q.m * v;
+    e += 0.5 * q.m * norm2(v) + 0.5 * q.q * q.m * q.a * q.a * norm2(q.w);
+  }
+}
+
 // a box with walls below and above (y), periodic in x (and z), under gravity toward the floor;
 // every law, 2D and 3D, against the reference; nobody crosses a wall
 TEST(EventDriven, WallsEqualReferenceAndHold)
 {
   for (int law = 0; law < 3; law++)
     for (int dim = 2; dim <= 3; dim++) {
-      SystemSpec s;
-      s.n = 80;
-      s.dim = dim;
-      s.phi = 0.2;
-      s.seed = 31 + law * 2 + dim;
-      Reference ref = make_system(s, law_of(law));
-      ref.periodic[1] = false;
+      Reference ref = walled_system(law, dim, 31 + law * 2 + dim, (law + 1) % 3, law);
       ref.gravity = dim == 2 ? Vec3(0.1, -0.4, 0.0) : Vec3(0.0, -0.4, 0.1);
-      // make room: walls half a diameter outside the particles' range
-      ref.walls.push_back({1, -1, ref.lo.y - 0.6, law_of((law + 1) % 3)});
-      ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, law_of(law)});
       const double mft = mean_free_time(ref);
       CoreRun run(ref);
       run.ed.start();
@@ -583,16 +618,8 @@ TEST(EventDriven, WallsEqualReferenceAndHold)
           ASSERT_LE(y + a, ref.walls[1].pos + 1e-9) << "through the ceiling";
         }
       }
-      ref.run_until(nwin * dt);
-      EXPECT_GT(run.total.wall_collisions, 10);
-      EXPECT_LT(run.total.collisions, 8 * s.n);
-      EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
-      EXPECT_EQ(run.total.collisions, ref.collisions);
-      expect_same_virial(ref, run.total);
-      for (size_t i = 0; i < ref.p.size(); i++) {
-        EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
-        EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
-      }
+      EXPECT_LT(run.total.collisions, 8 * 80);
+      expect_windows_equal_reference(ref, run, dt, nwin);
     }
 }
 
@@ -604,48 +631,23 @@ TEST(EventDriven, SlidingWallsEqualReferenceAndBalance)
 {
   for (int law = 0; law < 3; law++)
     for (int dim = 2; dim <= 3; dim++) {
-      SystemSpec s;
-      s.n = 80;
-      s.dim = dim;
-      s.phi = 0.2;
-      s.seed = 41 + law * 2 + dim;
-      Reference ref = make_system(s, law_of(law));
-      ref.periodic[1] = false;
-      RefWall lo{1, -1, ref.lo.y - 0.6, law_of(law)}, hi{1, +1, ref.lo.y + ref.L.y + 0.6, law_of(law)};
-      lo.slide = dim == 2 ? Vec3(-0.7, 0.0, 0.0) : Vec3(-0.7, 0.0, 0.3);
-      hi.slide = Vec3(0.7, 0.0, 0.0);
-      ref.walls.push_back(lo);
-      ref.walls.push_back(hi);
+      Reference ref = walled_system(law, dim, 41 + law * 2 + dim, law, law);
+      ref.walls[0].slide = dim == 2 ? Vec3(-0.7, 0.0, 0.0) : Vec3(-0.7, 0.0, 0.3);
+      ref.walls[1].slide = Vec3(0.7, 0.0, 0.0);
       const double mft = mean_free_time(ref);
       CoreRun run(ref);
       run.ed.start();
-      Vec3 p0;
-      double e0 = 0.0;
-      for (int i = 0; i < run.ed.size(); i++) {
-        const auto q = run.ed.particle(i);
-        p0 += q.m * run.ed.velocity(i, 0.0);
-        e0 += 0.5 * q.m * norm2(run.ed.velocity(i, 0.0)) + 0.5 * q.q * q.m * q.a * q.a * norm2(q.w);
-      }
+      Vec3 p0, p1;
+      double e0, e1;
+      momentum_and_energy(run.ed, p0, e0);
       const double dt = 0.55 * mft;
       const int nwin = 9;
       for (int w = 0; w < nwin; w++) {
         run.total.add(run.ed.advance_to(dt));
         run.ed.rebase(dt);
       }
-      ref.run_until(nwin * dt);
-      EXPECT_GT(run.total.wall_collisions, 10);
-      EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
-      EXPECT_EQ(run.total.collisions, ref.collisions);
-      expect_same_virial(ref, run.total);
-      Vec3 p1;
-      double e1 = 0.0;
-      for (size_t i = 0; i < ref.p.size(); i++) {
-        EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
-        EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
-        const auto q = run.ed.particle((int) i);
-        p1 += q.m * run.ed.velocity((int) i, 0.0);
-        e1 += 0.5 * q.m * norm2(run.ed.velocity((int) i, 0.0)) + 0.5 * q.q * q.m * q.a * q.a * norm2(q.w);
-      }
+      expect_windows_equal_reference(ref, run, dt, nwin);
+      momentum_and_energy(run.ed, p1, e1);
       // (no gravity: the particles' momentum changes by the walls' impulses only)
       const std::vector<double> &J = run.total.wall_impulse;
       for (int d = 0; d < 3; d++) EXPECT_NEAR(p1[d] - p0[d], -(J[d] + J[3 + d]), 1e-9) << "momentum " << d;
@@ -732,8 +734,6 @@ TEST(EventDriven, SlidingOutOfThePlaneRefused)
   EXPECT_NO_THROW(run.ed.configure(o, ref.ntypes, ref.laws));
 }
 
-// a thermal wall brings an elastic rough gas to its temperature, translational and rotational
-// (detailed balance of the flux Maxwellian); the opposite wall is elastic
 // a bed on a vibrating base (piecewise-parabolic motion) under gravity: event by event equal to
 // the reference (which finds wall contacts by brute-force marching and bisection), the base
 // injects energy, nobody goes through it
@@ -875,6 +875,8 @@ TEST(EventDriven, AutomaticCellWidth)
   EXPECT_EQ(EventDriven::auto_cell_width(2, 1.0, 0.0), 1.0);    // (no particles)
 }
 
+// a thermal wall brings an elastic rough gas to its temperature, translational and rotational
+// (detailed balance of the flux Maxwellian); the opposite wall is elastic
 TEST(EventDriven, ThermalWallEquilibratesTheGas)
 {
   for (int dim = 2; dim <= 3; dim++) {
