@@ -88,9 +88,13 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
       for (int d = 0; d < 3; d++) slide[d] = utils::numeric(FLERR, arg[iarg + 1 + d], false, lmp);
       check_slide(face);
       iarg += 4;
+    } else if (strcmp(arg[iarg], "shake") == 0) {
+      if (iarg + 4 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/wall shake dim A omega", error);
+      parse_shake(face, arg[iarg + 1], arg[iarg + 2], arg[iarg + 3]);
+      iarg += 4;
     } else {
       error->all(FLERR, "Unknown fix hardsphere/wall keyword: {} (allowed: coeffs, thermal, "
-                 "vibrate, slide)", arg[iarg]);
+                 "vibrate, slide, shake)", arg[iarg]);
     }
   }
   if (amplitude > 0.0 && temperature >= 0.0)
@@ -116,6 +120,25 @@ void FixHardsphereWall::check_slide(const std::string &face) const
   if (domain->dimension == 2 && slide[2] != 0.0)
     error->all(FLERR, "Fix hardsphere/wall slide velocity ({}, {}, {}) has vz = {} in a 2d "
                "simulation: a wall slides within the x-y plane", slide[0], slide[1], slide[2], slide[2]);
+}
+
+// an oscillation within the wall's plane: along a dimension of the simulation other than the
+// wall's normal, with a positive amplitude and angular frequency
+void FixHardsphereWall::parse_shake(const std::string &face, const std::string &d, const char *A,
+                                    const char *w)
+{
+  const bool twod = domain->dimension == 2;
+  shake_dim = d == "x" ? 0 : d == "y" ? 1 : d == "z" && !twod ? 2 : -1;
+  if (shake_dim < 0 || shake_dim == dim)
+    error->all(FLERR, "Fix hardsphere/wall shake {} is not available for face {} (allowed: a "
+               "dimension within the wall's plane, {}{}; to move the wall along its normal, use "
+               "vibrate)", d, face, dim == 0 ? "y" : "x", twod ? "" : dim == 2 ? " or y" : " or z");
+  shake_A = utils::numeric(FLERR, A, false, lmp);
+  shake_omega = utils::numeric(FLERR, w, false, lmp);
+  if (!(shake_A > 0.0))
+    error->all(FLERR, "Fix hardsphere/wall shake amplitude A = {} must be > 0", shake_A);
+  if (!(shake_omega > 0.0))
+    error->all(FLERR, "Fix hardsphere/wall shake angular frequency = {} must be > 0", shake_omega);
 }
 
 int FixHardsphereWall::setmask()
@@ -172,6 +195,9 @@ granfric::EDWall FixHardsphereWall::geometry() const
   w.omega = omega;
   w.sine = sine;
   w.slide = granfric::Vec3(slide[0], slide[1], slide[2]);
+  w.shake_dim = shake_dim;
+  w.shake_A = shake_A;
+  w.shake_omega = shake_omega;
   return w;
 }
 

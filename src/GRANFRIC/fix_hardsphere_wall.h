@@ -5,13 +5,15 @@
 
    fix ID group hardsphere/wall face pos [coeffs c1 ...] [thermal T seed]
                                           [vibrate sine|parabolic A omega] [slide vx vy vz]
+                                          [shake x|y|z A omega]
 
    A static plane wall for fix hardsphere/ed: face xlo|xhi|ylo|yhi|zlo|zhi in a non-periodic
    dimension, at position pos (a number or EDGE = the box boundary). Collisions with it are
    processed exactly by the event loop, with the wall limit of the hardsphere pair style's law:
    its own coefficients after the keyword coeffs (the values pair_coeff takes), or by default
-   those of pair_coeff I I for particles of type I. A wall may vibrate along its normal and
-   slide within its plane at a constant velocity (a sheared or Couette cell).
+   those of pair_coeff I I for particles of type I. A wall may vibrate along its normal, slide
+   within its plane at a constant velocity (a sheared or Couette cell) and oscillate within its
+   plane (a bed shaken sideways).
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -63,7 +65,10 @@ class FixHardsphereWall : public Fix, public HardsphereWallPart {
   double amplitude, omega;            // vibration, 0: static
   bool sine;                          // sinusoidal (else piecewise parabolic)
   double slide[3] = {0, 0, 0};        // velocity within the wall's plane
+  int shake_dim = -1;                 // oscillation within the plane along this dimension
+  double shake_A = 0.0, shake_omega = 0.0;
   void check_slide(const std::string &face) const;
+  void parse_shake(const std::string &face, const std::string &d, const char *A, const char *w);
   double step_force[3] = {0, 0, 0};   // force on the wall, averaged over the last step
   // since the fix was defined (kept in restart files): collisions, momentum given to the wall,
   // energy given to the particles, time

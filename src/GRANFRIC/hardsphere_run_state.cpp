@@ -59,14 +59,14 @@ std::vector<granfric::LawParams> HardsphereRunState::law_table() const
 // A new run may bring new coefficients, a new box, new walls or new atoms. The epoch (and the
 // event queue) of the last run goes on only if the core's configuration is the same in every
 // respect; the atoms themselves are compared at the first window (as between steps).
-// Vibrating walls depend on the absolute time, which reset_timestep can change: always a new
-// epoch then.
+// Vibrating and shaking walls depend on the absolute time, which reset_timestep can change:
+// always a new epoch then.
 void HardsphereRunState::new_run()
 {
   const granfric::EDOptions o = core_options();
   const std::vector<granfric::LawParams> laws = law_table();
   bool vibrating = false;
-  for (const auto &w : o.walls) vibrating = vibrating || w.vibrating();
+  for (const auto &w : o.walls) vibrating = vibrating || w.vibrating() || w.shaking();
   const bool same = !vibrating && run_ntypes == atom->ntypes &&
       granfric::EventDriven::same_configuration(o, atom->ntypes, laws, run_options, run_ntypes, run_laws);
   if (!same) {

@@ -121,6 +121,9 @@ struct CoreRun {
       e.omega = w.omega;
       e.sine = w.sine;
       e.slide = w.slide;
+      e.shake_dim = w.shake_dim;
+      e.shake_A = w.shake_A;
+      e.shake_omega = w.shake_omega;
       o.walls.push_back(e);
     }
     // the core keeps the shape factor per type: the reference's particles give it

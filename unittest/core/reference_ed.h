@@ -38,6 +38,14 @@ struct RefWall {
   double A = 0.0, omega = 0.0;    // vibrating lower wall: piecewise-parabolic sinusoid mimic
   bool sine = false;              //   or the sinusoid itself
   Vec3 slide;                     // velocity within the wall's plane
+  int shake_dim = -1;             // and an oscillation within it: displacement
+  double shake_A = 0.0, shake_omega = 0.0;    //   shake_A sin(shake_omega s) along shake_dim
+  Vec3 surface(double s) const
+  {
+    Vec3 u = slide;
+    if (shake_dim >= 0) u[shake_dim] += shake_A * shake_omega * std::cos(shake_omega * s);
+    return u;
+  }
   // the motion, written here independently of the core: on half period k (length pi/omega) the
   // wall rises and falls back (k even) or dips and comes back (k odd) with constant |acceleration|
   // 8 A omega^2 / pi^2, reaching pos +- A at mid-period
@@ -215,7 +223,7 @@ struct Reference {
         LawParams law = w.law;
         const double sa = time - a.t_last;
         if (tc > 0 && sa >= 0 && sa < tc) law = law.elastic();
-        Vec3 vwall = w.slide;
+        Vec3 vwall = w.surface(time);
         vwall[w.dim] = w.speed(time);
         const Collision c = collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body::wall(vwall), nn);
         tally_virial(a.a * nn, a.m * (c.v1 - a.v));

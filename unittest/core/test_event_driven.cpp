@@ -658,6 +658,45 @@ TEST(EventDriven, SlidingWallsEqualReferenceAndBalance)
     }
 }
 
+// A floor shaken within its plane (along x, and along z in 3d) and a lid shaken along x at
+// another frequency, under gravity: equal to the reference (whose surface velocity is written
+// apart), and the energy the walls give is the gas's energy change (kinetic and potential)
+// less the pair collisions' dissipation
+TEST(EventDriven, ShakenFloorEqualsReference)
+{
+  for (int law = 0; law < 3; law++)
+    for (int dim = 2; dim <= 3; dim++) {
+      Reference ref = walled_system(law, dim, 53 + law * 2 + dim, law, law);
+      ref.gravity = Vec3(0.0, -0.5, 0.0);
+      ref.walls[0].shake_dim = dim == 2 ? 0 : 2;
+      ref.walls[0].shake_A = 0.2;
+      ref.walls[0].shake_omega = 3.0;
+      ref.walls[1].shake_dim = 0;
+      ref.walls[1].shake_A = 0.1;
+      ref.walls[1].shake_omega = 7.0;
+      const double mft = mean_free_time(ref);
+      CoreRun run(ref);
+      run.ed.start();
+      Vec3 p0, p1;
+      double e0, e1;
+      momentum_and_energy(run.ed, p0, e0);
+      double u0 = 0.0, u1 = 0.0;
+      for (int i = 0; i < run.ed.size(); i++) u0 += 0.5 * run.ed.particle(i).m * run.ed.position(i, 0.0).y;
+      const double dt = 0.55 * mft;
+      const int nwin = 9;
+      for (int w = 0; w < nwin; w++) {
+        run.total.add(run.ed.advance_to(dt));
+        run.ed.rebase(dt);
+      }
+      expect_windows_equal_reference(ref, run, dt, nwin);
+      momentum_and_energy(run.ed, p1, e1);
+      for (int i = 0; i < run.ed.size(); i++) u1 += 0.5 * run.ed.particle(i).m * run.ed.position(i, 0.0).y;
+      const double work = run.total.wall_work[0] + run.total.wall_work[1];
+      EXPECT_NEAR(e1 + u1 - e0 - u0, work + run.total.dE, 1e-9 * (1.0 + e0));
+      EXPECT_GT(std::fabs(run.total.wall_impulse[ref.walls[0].shake_dim]), 0.0);
+    }
+}
+
 // Two thermal walls at one temperature sliding at the same velocity carry an elastic gas
 // along: it takes their velocity as its mean and their temperature about it
 TEST(EventDriven, SlidingThermalWallsCarryTheGas)

@@ -980,6 +980,22 @@ TEST(FixHardsphereWall, SlidingFloorDragsAnAtom)
               lmp->atom->omega[0][2] * lmp->atom->omega[0][2], 1e-12);
 }
 
+// The same disc onto a floor shaken along x, A sin(omega t): the floor's surface moves at
+// A omega cos(omega t_c) when the disc lands at t_c = 2.5, and drags it by the rough law's share
+TEST(FixHardsphereWall, ShakenFloorDragsAnAtomAtItsPhase)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\nboundary p f p\n"
+                 "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 3 0\n"
+                 "set group all diameter 1.0\nset group all mass 1.0\nvelocity all set 0.0 -1.0 0.0\n"
+                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.8 0.2\n"
+                 "fix ed all hardsphere/ed\nfix floor all hardsphere/wall ylo 0.0 shake x 0.3 2.0\n"
+                 "timestep 1.0\nthermo 0\nrun 4 post no");
+  const double q = 0.5, beta = 0.2, u = 0.3 * 2.0 * std::cos(2.0 * 2.5);
+  EXPECT_NEAR(lmp->atom->v[0][0], (1.0 + beta) * q / (1.0 + q) * u, 1e-12);
+  EXPECT_NEAR(lmp->atom->v[0][1], 0.8, 1e-12);
+}
+
 // A Couette cell: the floor and the lid slide in opposite directions; in the steady state the
 // momentum the lid gives the gas along x is what the floor takes (the wall forces balance),
 // and the shear force is nonzero
@@ -1106,7 +1122,7 @@ TEST_F(FixErrors, Wall)
   // (a fix whose constructor failed leaves its ID half-defined in LAMMPS: use fresh IDs)
   EXPECT_LMP_ERROR(l.get(), "fix w1 all hardsphere/wall ylo abc", "Expected floating point");
   EXPECT_LMP_ERROR(l.get(), "fix w2 all hardsphere/wall ylo EDGE spin 3",
-                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal, vibrate, slide\\)");
+                   "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal, vibrate, slide, shake\\)");
   EXPECT_LMP_ERROR(l.get(), "fix w8 all hardsphere/wall ylo EDGE thermal -1 5", "thermal T = -1 must be >= 0");
   EXPECT_LMP_ERROR(l.get(), "fix w11 all hardsphere/wall ylo EDGE vibrate square 0.1 10",
                    "vibrate square is not available \\(allowed: sine, parabolic\\)");

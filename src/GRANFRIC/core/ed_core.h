@@ -422,7 +422,7 @@ class EDCore {
   }
   void predict_walls(int i);    // (there are walls)
   void collide_wall(int i);
-  Collision thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t);
+  Collision thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t, const Vec3 &u);
 
   // ---- statistics and records of the collisions (statistics.cpp)
   std::vector<EDEvent> *history = nullptr;

@@ -77,12 +77,26 @@ struct EDWall {
   // moving wall
   Vec3 slide;
   bool sliding() const { return slide.x != 0.0 || slide.y != 0.0 || slide.z != 0.0; }
-  bool moving() const { return vibrating() || sliding(); }
+  // an oscillation within the wall's plane along dimension shake_dim (-1: none), displacement
+  // shake_A sin(shake_omega t): as sliding, it leaves the contact times alone and gives the
+  // surface the velocity shake_A shake_omega cos(shake_omega t) along that dimension
+  int shake_dim = -1;
+  double shake_A = 0.0, shake_omega = 0.0;
+  bool shaking() const { return shake_dim >= 0 && shake_A > 0.0 && shake_omega > 0.0; }
+  bool moving() const { return vibrating() || sliding() || shaking(); }
+  // the velocity of the wall's surface within its plane at absolute time s
+  Vec3 surface_velocity(double s) const
+  {
+    Vec3 u = slide;
+    if (shaking()) u[shake_dim] += shake_A * shake_omega * std::cos(shake_omega * s);
+    return u;
+  }
   // the wall's largest speed: A omega (sine), 4 A omega / pi (parabolic), 0 (static), plus the
-  // sliding speed
+  // largest speed within its plane
   double speed_bound() const
   {
-    return (!vibrating() ? 0.0 : sine ? A * omega : 4.0 * A * omega / M_PI) + norm(slide);
+    return (!vibrating() ? 0.0 : sine ? A * omega : 4.0 * A * omega / M_PI) + norm(slide) +
+        (shaking() ? shake_A * shake_omega : 0.0);
   }
   // position, velocity and acceleration at absolute time s
   void motion(double s, double &w, double &vw, double &aw) const;
@@ -94,7 +108,8 @@ struct EDWall {
   {
     f("dim", s.dim...), f("side", s.side...), f("pos", s.pos...), f("laws", s.laws...);
     f("T", s.T...), f("seed", s.seed...), f("A", s.A...), f("omega", s.omega...), f("sine", s.sine...);
-    f("slide", s.slide...);
+    f("slide", s.slide...), f("shake_dim", s.shake_dim...), f("shake_A", s.shake_A...);
+    f("shake_omega", s.shake_omega...);
   }
 };
 

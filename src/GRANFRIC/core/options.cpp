@@ -47,6 +47,9 @@ static void check_options(const EDOptions &o, int nt, const std::vector<LawParam
       throw std::invalid_argument("wall law table must have ntypes+1 entries");
     if (w.slide[w.dim] != 0.0 || (o.dim == 2 && w.slide.z != 0.0) || !std::isfinite(norm2(w.slide)))
       throw std::invalid_argument("a wall slides within its plane (and within the x-y plane in 2d), at a finite speed");
+    if (w.shake_dim >= 0 && (w.shake_dim == w.dim || w.shake_dim >= o.dim || !(w.shake_A > 0.0) ||
+                             !(w.shake_omega > 0.0) || !std::isfinite(w.shake_A * w.shake_omega)))
+      throw std::invalid_argument("a wall shakes within its plane (and within the x-y plane in 2d), with a positive finite amplitude and frequency");
     walled[w.dim] = true;
   }
   if (o.walls.size() > 100) throw std::invalid_argument("at most 100 walls");

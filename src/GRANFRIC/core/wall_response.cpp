@@ -13,7 +13,7 @@
 
 namespace granfric {
 
-Collision EDCore::thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t)
+Collision EDCore::thermal_reemission(const EDWall &w, int i, const Vec3 &n, double t, const Vec3 &u)
 {
   const EDParticleView p = view(i);
   uint64_t tbits;
@@ -27,7 +27,7 @@ Collision EDCore::thermal_reemission(const EDWall &w, int i, const Vec3 &n, doub
   for (int d = 0; d < 3; d++)
     if (d != w.dim && d < opt.dim) v[d] = sv * gauss();
   v[w.dim] = n[w.dim] * sv * gauss_radius(uniform());    // flux: v_n exp(-v_n^2/2)
-  v += w.slide;                                           // (the wall's frame)
+  v += u;                                                 // (the wall's frame)
   Vec3 wv;
   if (opt.dim == 2)
     wv.z = sw * gauss();
@@ -56,12 +56,13 @@ void EDCore::collide_wall(int i)
   const double q = qt[s.type];
   Body b{h.v, p.w, p.m, h.a, q};
   Collision c;    // (its dE is set below for moving walls)
+  const Vec3 u = w.surface_velocity(clock + t);    // (within the plane)
   if (w.T >= 0.0) {
-    c = thermal_reemission(w, i, n, t);
+    c = thermal_reemission(w, i, n, t, u);
   } else {
     double ww, vw, aw;
     w.motion(clock + t, ww, vw, aw);
-    Vec3 vwall = w.slide;
+    Vec3 vwall = u;
     vwall[w.dim] = vw;
     c = collide(law, b, Body::wall(vwall), n);
   }
