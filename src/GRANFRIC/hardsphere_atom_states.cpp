@@ -51,7 +51,7 @@ void HardsphereAtomStates::grow(int nmax)
   }
   if (xstate) {
     memory->grow(xstate, nmax, XS_SIZE, "hardsphere/ed:xstate");
-    for (int i = xstate_n; i < nmax; i++) xstate[i][XS_T] = xstate[i][XS_WX] = NAN;
+    for (int i = xstate_n; i < nmax; i++) xstate[i][XS_T] = xstate[i][XS_WX] = xstate[i][XS_WW] = NAN;
     xstate_n = std::max(xstate_n, nmax);
   }
   if (atally) {
@@ -140,10 +140,15 @@ void HardsphereAtomStates::store_state(const granfric::EventDriven &ed, int i, i
   for (int d = 0; d < 3; d++) xs[XS_POFF + d] = partner > 0.0 ? po[d] : 0.0;
   xs[XS_TLAST] = p.t_last;
   if (wx) {
+    const double *w = atom->omega[i];
     for (int d = 0; d < 3; d++) {    // (element by element: copy_n of three called memcpy)
       xs[XS_WX + d] = wx[d];
       xs[XS_WV + d] = wv[d];
+      xs[XS_WW + d] = w[d];
     }
+    xs[XS_BODY] = atom->radius[i];
+    xs[XS_BODY + 1] = atom->rmass[i];
+    xs[XS_BODY + 2] = (double) atom->type[i];
   } else {
     xs[XS_WX] = NAN;    // (states_hold compares this first)
   }
@@ -174,11 +179,19 @@ bool HardsphereAtomStates::states_hold(int n, double T0, const double *g,
   // (an atom that holds the x and v written at T0 passes at once: the full test would compute
   // them again from its stored state, with its periods as they are. The rows lie one after
   // another, as LAMMPS allocates per-atom arrays)
+  // An atom whose spin or body (radius, mass, type) differs from what the window left (set,
+  // fix adapt) does not hold: a serial run starts a new epoch for it too
   const bool written = T0 == written_at;
   const granfric::Vec3 gv(g[0], g[1], g[2]);
   const double *xa = n > 0 ? atom->x[0] : nullptr, *va = n > 0 ? atom->v[0] : nullptr;
+  const double *wa = n > 0 ? atom->omega[0] : nullptr;
   const double *xs = n > 0 ? xstate[0] : nullptr;
-  for (int i = 0; i < n; i++, xa += 3, va += 3, xs += XS_SIZE) {
+  const double *radius = atom->radius, *rmass = atom->rmass;
+  const int *type = atom->type;
+  for (int i = 0; i < n; i++, xa += 3, va += 3, wa += 3, xs += XS_SIZE) {
+    if (wa[0] != xs[XS_WW] || wa[1] != xs[XS_WW + 1] || wa[2] != xs[XS_WW + 2] ||
+        radius[i] != xs[XS_BODY] || rmass[i] != xs[XS_BODY + 1] || type[i] != xs[XS_BODY + 2])
+      return false;
     if (written && xa[0] == xs[XS_WX] && xa[1] == xs[XS_WX + 1] && xa[2] == xs[XS_WX + 2] &&
         va[0] == xs[XS_WV] && va[1] == xs[XS_WV + 1] && va[2] == xs[XS_WV + 2])
       continue;

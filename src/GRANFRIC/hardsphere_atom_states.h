@@ -31,11 +31,12 @@ class HardsphereAtomStates : protected Pointers {
  public:
   // a stored state's fields: XS_X, XS_V at time XS_T (epoch time; NaN: none yet), the periods
   // between the core's frame and LAMMPS's (XS_OFF), the last partner's ID (0: none) and its
-  // image shift, the last collision time (epoch time); XS_WX, XS_WV: the x and v the last
-  // window wrote into LAMMPS's arrays, as written (NaN: not written with this state), so that
-  // the next window sees that nothing else changed the atom without flying its state forward
+  // image shift, the last collision time (epoch time); XS_WX, XS_WV, XS_WW: the x, v and
+  // omega the last window wrote into LAMMPS's arrays, as written (NaN: not written with this
+  // state), and the atom's radius, mass and type then (XS_BODY), so that the next window sees
+  // that nothing else changed the atom without flying its state forward
   enum { XS_X = 0, XS_V = 3, XS_T = 6, XS_OFF = 7, XS_PARTNER = 10, XS_POFF = 11, XS_TLAST = 14,
-         XS_WX = 15, XS_WV = 18, XS_SIZE = 21 };
+         XS_WX = 15, XS_WV = 18, XS_WW = 21, XS_BODY = 24, XS_SIZE = 27 };
   // a tally's fields: the atom's collision virial (6), its pair and wall collisions, its
   // translational and rotational energy change in pair collisions, its energy change in wall
   // collisions (energy units), and the time of its last collision since the tallies began
@@ -69,7 +70,8 @@ class HardsphereAtomStates : protected Pointers {
   // of an epoch that began at absolute time clock
   AtomRecord record(int i, bool exact, double clock) const;
   // owned atom i from core particle e of ed (off: its periods; partner: the last partner's ID,
-  // 0: none; wx, wv: what the window wrote into x and v, or null)
+  // 0: none; wx, wv: what the window wrote into x and v, or null; its omega and body are
+  // read from LAMMPS's arrays, where the window wrote them)
   void store_state(const granfric::EventDriven &ed, int i, int e, const double *off, double partner,
                    const double *wx = nullptr, const double *wv = nullptr);
   // the last collision time of core particle e (epoch time, epoch at clock) for atom i

@@ -219,6 +219,21 @@ def test_step_number_moved_between_runs(tmp_path):
     assert not differ, f"2 ranks: {len(differ)} atoms differ, the first IDs {differ[:5]}"
 
 
+@pytest.mark.parametrize("alter", ["mass", "diameter", "omega"])
+def test_atoms_set_between_runs(tmp_path, alter):
+    """Between two runs a set command changes the atoms' masses, diameters or spins (their
+    positions and velocities stay). Serially the core no longer holds the atoms, so the second
+    run begins a new epoch from LAMMPS's atoms; every rank of a domain window sees the change
+    too and begins it alike: 1, 2 and 3 ranks end with the same bits."""
+    w = str(tmp_path)
+    lmp(w, 1, scene="dilute", steps=0, out="s0", restart_out="init")
+    for n in (1, 2, 3):
+        lmp(w, n, scene="dilute", steps=20, alter=alter, restart_in="init", out=f"s{n}")
+    for n in (2, 3):
+        differ = identical(w, "s1", f"s{n}")
+        assert not differ, f"{n} ranks: {len(differ)} atoms differ, the first IDs {differ[:5]}"
+
+
 def test_chain_across_boundary_is_detected_and_redone(tmp_path):
     w = str(tmp_path)
     lmp(w, 1, scene="chain", steps=1, out="s1", log="log1")
