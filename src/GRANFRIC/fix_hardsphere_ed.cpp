@@ -289,6 +289,14 @@ void FixHardsphereED::setup(int vflag)
   run->new_run();
 }
 
+void FixHardsphereED::undo_rounding()
+{
+  if (run->atoms.stored())
+    run->atoms.undo_rounding();
+  else
+    gwin->undo_rounding();
+}
+
 double FixHardsphereED::window_start_time() const
 {
   return hardsphere::time_at_step(update, update->ntimestep - 1);

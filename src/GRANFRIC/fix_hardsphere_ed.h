@@ -56,10 +56,10 @@ class FixHardsphereED : public Fix {
   void post_force(int) override;
   void post_force_respa(int, int, int) override;
   void setup(int) override;
-  void setup_pre_neighbor() override { run->atoms.undo_rounding(); }
+  void setup_pre_neighbor() override { undo_rounding(); }
   void pre_neighbor() override
   {
-    if (balancing) run->atoms.undo_rounding();
+    if (balancing) undo_rounding();
   }
   void initial_integrate(int) override;
   void initial_integrate_respa(int, int, int) override;
@@ -111,6 +111,9 @@ class FixHardsphereED : public Fix {
   int nlevels_respa = 0;
   bool balancing = false;    // a fix moves the subdomains during the run (fix balance)
   void find_window_parts();
+  // LAMMPS's balance may round positions: every atom moved only so is put back where the last
+  // window wrote it (from the stored states on several ranks, from the core serially)
+  void undo_rounding();
   // a restart file was written: the next window starts afresh from the atoms as the file holds
   // them, as a run continued from that file does (see resync_for_restart)
   bool resync = false;

@@ -323,6 +323,30 @@ void HardsphereGatherWindow::keep_atom(int i, int s, const int8_t *stored, const
   state.take_back(i, s, off, p < 0 ? 0.0 : (double) otags[p], w, w + 3);
 }
 
+// LAMMPS's balance (and fix balance) take every position to the box's fractional coordinates
+// and back, which may round it in the last place (FarWrap::match). Runs on several ranks put
+// such atoms back from their stored states; a serial run keeps none, but its core still holds
+// what this window wrote at the end of the last step (written_state), the same numbers. So a
+// new epoch begins from the same positions whatever the number of ranks.
+void HardsphereGatherWindow::undo_rounding()
+{
+  if (comm->nprocs > 1 || !valid || !state.core_kept_by(this) || ed.size() != atom->nlocal) return;
+  ntotal = atom->nlocal;
+  order_by_id();
+  if (!same_atoms || (int) offset.size() != noff * ntotal) return;
+  const double T = state.epoch_time(update->ntimestep);    // (the last window's end)
+  const hardsphere::FarWrap wrap(domain);
+  for (int s = 0; s < ntotal; s++) {
+    double w[9], *x = atom->x[order[s]];
+    written_state(s, T, w);
+    for (int d = 0; d < 3; d++) {
+      int k;
+      double c;
+      if (x[d] != w[d] && wrap.match(d, x[d], w[d], k, c)) x[d] = c;
+    }
+  }
+}
+
 double HardsphereGatherWindow::memory_usage() const
 {
   auto bytes = [](const auto &vec) { return (double) vec.capacity() * sizeof(vec[0]); };

@@ -219,12 +219,14 @@ def test_step_number_moved_between_runs(tmp_path):
     assert not differ, f"2 ranks: {len(differ)} atoms differ, the first IDs {differ[:5]}"
 
 
-@pytest.mark.parametrize("alter", ["mass", "diameter", "omega"])
+@pytest.mark.parametrize("alter", ["mass", "diameter", "omega", "balance"])
 def test_atoms_set_between_runs(tmp_path, alter):
     """Between two runs a set command changes the atoms' masses, diameters or spins (their
     positions and velocities stay). Serially the core no longer holds the atoms, so the second
     run begins a new epoch from LAMMPS's atoms; every rank of a domain window sees the change
-    too and begins it alike: 1, 2 and 3 ranks end with the same bits."""
+    too and begins it alike. Or a balance command rounds positions in the last place and new
+    coefficients start a new epoch: serially the positions are put back from the core, on
+    several ranks from the stored states. 1, 2 and 3 ranks end with the same bits."""
     w = str(tmp_path)
     lmp(w, 1, scene="dilute", steps=0, out="s0", restart_out="init")
     for n in (1, 2, 3):
