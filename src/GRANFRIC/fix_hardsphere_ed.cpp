@@ -398,27 +398,40 @@ void FixHardsphereED::write_restart(FILE *fp)
   update->update_time();
   if (comm->me == 0) {
     // layout: -RESTART_FORMAT, the number of totals, the totals, the shell factor of domain
-    // windows (which decides which copies a rank's window holds, and so its conflicts)
+    // windows (which decides which copies a rank's window holds, and so its conflicts), the
+    // simulation time and its step (see restart)
     const double head[2] = {-RESTART_FORMAT, (double) NVECTOR};
-    const double widen = dwin->reach_factor();
-    int size = (NVECTOR + 3) * sizeof(double);
+    const double tail[3] = {dwin->reach_factor(), update->atime, (double) update->atimestep};
+    int size = (NVECTOR + 5) * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
     fwrite(head, sizeof(double), 2, fp);
     fwrite(run->totals, sizeof(double), NVECTOR, fp);
-    fwrite(&widen, sizeof(double), 1, fp);
+    fwrite(tail, sizeof(double), 3, fp);
   }
 }
 
 void FixHardsphereED::restart(char *buf)
 {
   // the totals (files with fewer entries leave the new ones at 0); files of the first format
-  // start with the count and end with the totals
+  // start with the count and end with the totals, those of the second add the shell factor
   const auto *d = reinterpret_cast<const double *>(buf);
-  const bool extras = d[0] == -RESTART_FORMAT;
-  if (extras) d++;
-  const int n = std::min((int) d[0], (int) NVECTOR);
+  const double format = d[0] < 0.0 ? -d[0] : 1.0;
+  if (format > 1.0) d++;
+  const int nsaved = (int) d[0], n = std::min(nsaved, (int) NVECTOR);
   memcpy(run->totals, d + 1, n * sizeof(double));
-  if (extras) dwin->set_reach_factor(d[1 + (int) d[0]]);
+  if (format > 1.0) dwin->set_reach_factor(d[1 + nsaved]);
+  // The windows' times (kicks, the phase of vibrating and shaking walls) are the simulation
+  // time. LAMMPS's read_restart restores it; LIGGGHTS 3.8's starts it again from 0. If this
+  // file's step is the current one and the host's time there differs from the writing run's,
+  // the host's clock is set back to that time.
+  if (format >= 3.0) {
+    const double t = d[2 + nsaved];
+    const bigint step = (bigint) d[3 + nsaved];
+    if (update->ntimestep == step && hardsphere::time_at_step(update, step) != t) {
+      update->atime = t;
+      update->atimestep = step;
+    }
+  }
   // (the rebuild count continues too: the step after the file was written starts afresh in
   // the writing run as in this one, see resync_for_restart)
 }

@@ -45,7 +45,7 @@ class FixHardsphereED : public Fix {
   // the output vector (HardsphereRunState lists its entries)
   static constexpr int NVECTOR = HardsphereRunState::NVECTOR;
   enum { GATHER, DOMAIN };
-  static constexpr double RESTART_FORMAT = 2.0;    // (see write_restart)
+  static constexpr double RESTART_FORMAT = 3.0;    // (see write_restart)
 
   FixHardsphereED(class LAMMPS *, int, char **);
   // the fix hardsphere/ed with ID id, or an error in the name of who (a command and its style)
