@@ -49,24 +49,26 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
 
 // Absurd speeds, accelerations, steps and wall temperatures end at the start of the run, not
 // after the event cap's maxevents x atoms cell crossings (minutes): the atoms' paths in one
-// step (speed, gravity, the speed a vibrating or thermal wall gives) summed over the atoms, in
-// the largest diameters (the narrowest cells), against that cap; and thermal walls under
-// gravity (check_thermal_walls).
+// step (speed, gravity, the speed a moving or thermal wall or the kicks give) summed over the
+// atoms, in the largest diameters (the narrowest cells), against that cap; lengths times speeds
+// that would overflow the contact-time arithmetic; and thermal walls under gravity
+// (check_thermal_walls).
 void FixHardsphereED::check_scales() const
 {
   const double *gravity = run->settings.gravity;
   const long maxevents = run->settings.maxevents;
-  // (over all atoms: the summed speed, the largest mass, radius and inverse mass)
-  double sum = 0.0, mx[3] = {0.0, 0.0, 0.0};
+  // (over all atoms: the summed speed; the largest speed, mass, radius and inverse mass)
+  double sum = 0.0, mx[4] = {0.0, 0.0, 0.0, 0.0};
   for (int i = 0; i < atom->nlocal; i++) {
-    const double *v = atom->v[i];
-    sum += std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const double *v = atom->v[i], speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    sum += speed;
     mx[0] = std::max(mx[0], atom->rmass[i]);
     mx[1] = std::max(mx[1], atom->radius[i]);
     mx[2] = std::max(mx[2], 1.0 / atom->rmass[i]);
+    mx[3] = std::max(mx[3], speed);
   }
   MPI_Allreduce(MPI_IN_PLACE, &sum, 1, MPI_DOUBLE, MPI_SUM, world);
-  MPI_Allreduce(MPI_IN_PLACE, mx, 3, MPI_DOUBLE, MPI_MAX, world);
+  MPI_Allreduce(MPI_IN_PLACE, mx, 4, MPI_DOUBLE, MPI_MAX, world);
   const double n = (double) atom->natoms;
   if (n == 0.0) return;
   check_thermal_walls(mx[0], mx[1]);
@@ -78,14 +80,24 @@ void FixHardsphereED::check_scales() const
     tmax = std::max(tmax, e.T);
   }
   const double vwall = std::max(2.0 * wmax, tmax > 0.0 ? 5.0 * std::sqrt(tmax * mx[2]) : 0.0);
-  const double mean = (sum / n + vwall) * dt + 0.5 * g * dt * dt;    // per atom and step
+  double vkick = 0.0;
+  for (auto *k : run->kicks) vkick += k->speed_scale(dt, domain->dimension);
+  const double mean = (sum / n + vwall + vkick) * dt + 0.5 * g * dt * dt;    // per atom and step
   if (!(mean / (2.0 * mx[1]) <= (double) maxevents))
     error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
-               "average (mean speed {:.3g}, {:.3g} from walls that vibrate or are thermal, gravity "
-               "{:.3g}, timestep {:.3g}), "
-               "more cells than the event cap maxevents = {} allows each atom in a step: lower "
-               "the speeds, the walls' speed or temperature, gravity or the timestep", mean / (2.0 * mx[1]),
-               sum / n, vwall, g, dt, maxevents);
+               "average (mean speed {:.3g}, {:.3g} from moving or thermal walls, {:.3g} from kicks, "
+               "gravity {:.3g}, timestep {:.3g}), more cells than the event cap maxevents = {} "
+               "allows each atom in a step: lower the speeds, the walls' speed or temperature, the "
+               "kicks' v_dr, gravity or the timestep", mean / (2.0 * mx[1]), sum / n, vwall, vkick,
+               g, dt, maxevents);
+  // (a contact time takes squares of distances and speeds, and of their products)
+  const double L = std::max({domain->prd[0], domain->prd[1], domain->dimension == 3 ? domain->prd[2] : 0.0});
+  const double vtop = mx[3] + vwall + vkick + g * dt;
+  if (!(L * vtop < 1e150 && L < 1e150))
+    error->all(FLERR, "Fix hardsphere/ed: the box length {:.3g} times the largest speed {:.3g} (of "
+               "the atoms, walls, kicks and gravity in a step) is {:.3g}, beyond 1e150: the squares "
+               "in the contact times would overflow and collisions be missed. Choose units in "
+               "which lengths and speeds are nearer 1", L, vtop, L * vtop);
 }
 
 // A thermal wall under gravity toward it holds the grains it re-emits at rest (T = 0) or
@@ -175,12 +187,17 @@ void FixHardsphereED::check_plane()
 }
 
 // a lower wall at or above an upper wall of the same dimension leaves no room between them
+// (a wall outside the box is reported by the wall itself, as that)
 void FixHardsphereED::check_walls_cross() const
 {
+  auto inside = [&](const granfric::EDWall &w) {
+    return w.pos >= domain->boxlo[w.dim] && w.pos <= domain->boxhi[w.dim];
+  };
   for (auto *lo : run->walls)
     for (auto *hi : run->walls) {
       const granfric::EDWall a = lo->geometry(), b = hi->geometry();
       if (a.dim != b.dim || a.side > 0 || b.side < 0 || a.pos + a.A < b.pos) continue;
+      if (!inside(a) || !inside(b)) continue;
       error->all(FLERR, "Fix hardsphere/wall {} ({} at {}{}) is not below fix hardsphere/wall {} "
                  "({} at {}): the lower wall must lie below the upper one", lo->wall_id(), lo->face(),
                  a.pos, a.A > 0.0 ? host::format(" + amplitude {}", a.A) : "", hi->wall_id(), hi->face(),

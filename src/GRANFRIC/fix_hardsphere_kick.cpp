@@ -15,6 +15,7 @@
 #include "modify.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -101,6 +102,13 @@ void FixHardsphereKick::check_kicks_per_step() const
     error->all(FLERR, "Fix hardsphere/kick {}: f_dr = {:g} reaches kick index {:.6g} by the end of "
                "the run at time {:.6g} (at most {:g}: kick times k/f_dr must stay exact)", id, fdr,
                fdr * std::fabs(t_end), t_end, MAX_KICK_INDEX);
+}
+
+// the kicks of a step add independent Gaussian increments of v_dr per component: their sum
+// grows as the square root of their number (at least one kick's)
+double FixHardsphereKick::speed_scale(double dt, int dim) const
+{
+  return law.vdr * std::sqrt((double) dim * std::max(1.0, law.fdr * dt));
 }
 
 double FixHardsphereKick::compute_scalar()

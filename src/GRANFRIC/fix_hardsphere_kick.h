@@ -45,11 +45,12 @@ class FixHardsphereKick : public Fix, public HardsphereDriving {
   long kick_counter() const override { return next_kick; }
   void rewind(long k) override { next_kick = k; }
   granfric::Vec3 momentum_shift(long k, int dim) const override;
+  double speed_scale(double dt, int dim) const override;
   void apply(granfric::EventDriven &ed, const std::vector<tagint> &tag, const std::vector<int> &mask,
              long k, int dim, const granfric::Vec3 &dvcm) const override;
   // bounds (doc/fix_hardsphere_kick.rst): kicks per step, kicks per step times atoms, the kick
   // index of a run, v_dr, spin
-  static constexpr double MAX_KICKS_PER_STEP = 1e6, MAX_ATOM_KICKS_PER_STEP = 1e9;
+  static constexpr double MAX_KICKS_PER_STEP = 1e6, MAX_ATOM_KICKS_PER_STEP = 1e7;
   static constexpr double MAX_KICK_INDEX = 1e15, MAX_VDR = 1e150, MAX_SPIN = 1e6;
 
  private:

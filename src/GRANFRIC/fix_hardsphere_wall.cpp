@@ -49,9 +49,15 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
   int iarg = 5;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "coeffs") == 0) {
+      // (every word up to the next keyword: a value that is not a number is reported as such
+      // when the coefficients are checked against the pair style's law)
       iarg++;
-      while (iarg < narg && (utils::is_double(arg[iarg]) || strcmp(arg[iarg], "inf") == 0))
-        coeffs.emplace_back(arg[iarg++]);
+      auto keyword = [](const char *w) {
+        for (const char *k : {"coeffs", "thermal", "vibrate", "slide", "shake"})
+          if (strcmp(w, k) == 0) return true;
+        return false;
+      };
+      while (iarg < narg && !keyword(arg[iarg])) coeffs.emplace_back(arg[iarg++]);
       if (coeffs.empty())
         error->all(FLERR, "Fix hardsphere/wall coeffs needs the law's coefficients, as pair_coeff "
                    "takes them");

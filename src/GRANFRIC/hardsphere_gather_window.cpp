@@ -16,6 +16,7 @@
 #include "update.h"
 
 #include <algorithm>
+#include <string>
 #include <cstring>
 #include <utility>
 
@@ -252,29 +253,51 @@ void HardsphereGatherWindow::advance(double T1)
                  "scale (did a collision law create energy, e.g. hardsphere/jz with kappa_d > "
                  "kappa_s, or does an atom start much faster than the others?)",
                  e.n, update->ntimestep, e.n - 1, (tagint) otags[e.i], e.speed);
-    bool creating = false;
-    for (const auto &law : state.law_table()) creating = creating || law.can_create_energy();
     const std::string partner = e.j < 0 ? host::format("fix hardsphere/wall {}", state.walls[-1 - e.j]->wall_id())
                                         : host::format("atom {}", (tagint) otags[e.j]);
-    const double tc = state.settings.tc;
-    const std::string collapse = tc > 0.0
-        ? host::format("inelastic collapse despite the TC model (tc {}): raise tc or maxevents", tc)
-        : std::string("inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
     error->all(FLERR,
                "Fix hardsphere/ed: atom {} had {} collisions within step {} (maxevents {}), the "
                "last one with {} at time {}: {}",
                (tagint) otags[e.i], e.n, update->ntimestep, state.settings.maxevents, partner,
-               state.epoch_clock + e.t,
-               creating ? "a collision law here can create energy (hardsphere/jz with kappa_d > "
-                          "kappa_s), which can run away; use kappa_d <= kappa_s, or raise "
-                          "maxevents if the energy stays bounded"
-                        : collapse);
+               state.epoch_clock + e.t, endless_collisions());
   } catch (std::exception &e) {
     state.core_failed(e, true);
   }
   // (every rank ran every collision: rank 0 keeps the rows)
   if (comm->me != 0) state.clog.clear();
   state.keep_rows(otags, cmask);
+}
+
+// Why a particle can collide without end, from what the collision laws allow: laws that create
+// energy can run away; inelastic ones collapse (the TC model prevents it); when every law
+// conserves energy neither applies, and what is left is a particle caged among neighbours it
+// overlaps (overlap allow) or one far lighter than its neighbours
+std::string HardsphereGatherWindow::endless_collisions() const
+{
+  bool creating = false, elastic = true;
+  std::vector<granfric::LawParams> laws = state.law_table();
+  for (auto *w : state.walls) {
+    const granfric::EDWall e = w->wall();
+    laws.insert(laws.end(), e.laws.begin() + 1, e.laws.end());
+  }
+  for (const auto &law : laws) {
+    creating = creating || law.can_create_energy();
+    elastic = elastic && law.conserves_energy();
+  }
+  const double tc = state.settings.tc;
+  if (creating)
+    return "a collision law here can create energy (hardsphere/jz with kappa_d > kappa_s), which "
+           "can run away; use kappa_d <= kappa_s, or raise maxevents if the energy stays bounded";
+  if (elastic)
+    return std::string("every collision law here conserves energy, so this is no inelastic "
+                       "collapse: ") +
+        (state.settings.allow_overlap ? "atoms that overlap their neighbours (overlap allow) can "
+                                        "be caged by them, or "
+                                      : "") +
+        "a particle far lighter than its neighbours collides far more often than they do; check "
+        "the initial configuration and the masses, or raise maxevents";
+  return tc > 0.0 ? host::format("inelastic collapse despite the TC model (tc {}): raise tc or maxevents", tc)
+                  : std::string("inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
 }
 
 // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the

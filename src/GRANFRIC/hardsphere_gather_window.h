@@ -21,6 +21,7 @@
 #include "host_compat.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -63,6 +64,7 @@ class HardsphereGatherWindow : protected Pointers {
   bool reusable(int s, double T0, const hardsphere::FarWrap &wrap);
   void written_state(int s, double t, double *w) const;
   void keep_atom(int i, int s, const int8_t *stored, const double *w);
+  std::string endless_collisions() const;
 
   int ntotal = 0;                 // atoms in the system
   int myfirst = 0;                // index of this rank's first atom in the gathered system

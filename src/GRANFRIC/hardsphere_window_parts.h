@@ -31,6 +31,8 @@ class HardsphereDriving {
   // the velocity shift of kick k that keeps the driven atoms' momentum (collective; the same
   // bits on any number of ranks)
   virtual granfric::Vec3 momentum_shift(long k, int dim) const = 0;
+  // the typical speed the kicks of one step of length dt give an atom (dim dimensions)
+  virtual double speed_scale(double dt, int dim) const = 0;
   // kick k applied to the core's particles: tag[e], mask[e] of core particle e
   virtual void apply(granfric::EventDriven &ed, const std::vector<tagint> &tag,
                      const std::vector<int> &mask, long k, int dim, const granfric::Vec3 &dvcm) const = 0;

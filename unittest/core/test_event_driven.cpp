@@ -1068,6 +1068,32 @@ TEST(EventDriven, CollapseStopsAtEventCapWithoutTC)
   EXPECT_LT(secs, 120.0) << "the cap must stop a collapse in bounded time";
 }
 
+// A particle far faster than the system's scale crosses cells without end: the cap on cell
+// crossings (max_collisions times the particles) stops the window and names it and its speed
+TEST(EventDriven, CrossingCapStopsAFastParticle)
+{
+  SystemSpec s;
+  s.n = 8;
+  s.dim = 2;
+  s.phi = 0.01;
+  Reference ref = make_system(s, LawParams::rough(1.0, -1.0));
+  CoreRun run(ref, 10);
+  run.ed.particle(3).v = Vec3(1e8, 3e7, 0.0);
+  run.ed.start();
+  bool thrown = false;
+  try {
+    run.window(1.0);
+  } catch (const EventCapError &e) {
+    thrown = true;
+    EXPECT_EQ(e.kind, EventCapError::CROSSINGS);
+    EXPECT_GT(e.n, 80);
+    // (the fast particle, or one it struck)
+    EXPECT_GT(e.speed, 1e7);
+    EXPECT_GT(norm(run.ed.velocity(e.i, e.t)), 1e7);
+  }
+  EXPECT_TRUE(thrown);
+}
+
 TEST(EventDriven, TCModelPreventsCollapse)
 {
   Reference ref = collapsing_system();

@@ -51,6 +51,9 @@ struct LawParams {
   bool can_create_energy() const { return kind == LawKind::JZ && mu_d > mu_s; }
   // is it smooth? (rt = -1 whatever the contact, no Coulomb limit: no tangential impulse)
   bool smooth() const { return rt_max == -1.0 && mu_s == INF; }
+  // does every collision conserve the kinetic energy? (elastic normal motion, and a tangential
+  // motion that is either untouched or reversed without a Coulomb limit)
+  bool conserves_energy() const { return r == 1.0 && mu_s == INF && (rt_max == -1.0 || rt_max == 1.0); }
 
   // Every field, in one fixed order: f(name, field of s...) for each, with the fields of every s
   // given by reference (EDOptions::each_field)
