@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <functional>
 #include <random>
 #include <type_traits>
 #include <unordered_map>
@@ -567,10 +568,16 @@ Reference walled_system(int law, int dim, unsigned seed, int lo_law, int hi_law)
   return ref;
 }
 
-// nwin windows of length dt, then the reference to the same time: the same collisions, the
-// same states to 1e-9 and the same virial
-void expect_windows_equal_reference(Reference &ref, CoreRun &run, double dt, int nwin)
+// nwin windows of length dt (after each, check() if given), then the reference to the same
+// time: the same collisions, the same states to 1e-9 and the same virial
+void windows_equal_reference(Reference &ref, CoreRun &run, double dt, int nwin,
+                             const std::function<void()> &check = nullptr)
 {
+  for (int w = 0; w < nwin; w++) {
+    run.total.add(run.ed.advance_to(dt));
+    run.ed.rebase(dt);
+    if (check) check();
+  }
   ref.run_until(nwin * dt);
   EXPECT_GT(run.total.wall_collisions, 10);
   EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
@@ -607,19 +614,14 @@ TEST(EventDriven, WallsEqualReferenceAndHold)
       CoreRun run(ref);
       run.ed.start();
       // ~5 collisions per particle: longer horizons lose 1e-9 to chaos, not to errors
-      const double dt = 0.55 * mft;
-      const int nwin = 9;
-      for (int w = 0; w < nwin; w++) {
-        run.total.add(run.ed.advance_to(dt));
-        run.ed.rebase(dt);
+      windows_equal_reference(ref, run, 0.55 * mft, 9, [&]() {
         for (int i = 0; i < run.ed.size(); i++) {
           const double y = run.ed.position(i, 0.0).y, a = run.ed.particle(i).a;
           ASSERT_GE(y - a, ref.walls[0].pos - 1e-9) << "through the floor";
           ASSERT_LE(y + a, ref.walls[1].pos + 1e-9) << "through the ceiling";
         }
-      }
+      });
       EXPECT_LT(run.total.collisions, 8 * 80);
-      expect_windows_equal_reference(ref, run, dt, nwin);
     }
 }
 
@@ -640,13 +642,7 @@ TEST(EventDriven, SlidingWallsEqualReferenceAndBalance)
       Vec3 p0, p1;
       double e0, e1;
       momentum_and_energy(run.ed, p0, e0);
-      const double dt = 0.55 * mft;
-      const int nwin = 9;
-      for (int w = 0; w < nwin; w++) {
-        run.total.add(run.ed.advance_to(dt));
-        run.ed.rebase(dt);
-      }
-      expect_windows_equal_reference(ref, run, dt, nwin);
+      windows_equal_reference(ref, run, 0.55 * mft, 9);
       momentum_and_energy(run.ed, p1, e1);
       // (no gravity: the particles' momentum changes by the walls' impulses only)
       const std::vector<double> &J = run.total.wall_impulse;
@@ -682,13 +678,7 @@ TEST(EventDriven, ShakenFloorEqualsReference)
       momentum_and_energy(run.ed, p0, e0);
       double u0 = 0.0, u1 = 0.0;
       for (int i = 0; i < run.ed.size(); i++) u0 += 0.5 * run.ed.particle(i).m * run.ed.position(i, 0.0).y;
-      const double dt = 0.55 * mft;
-      const int nwin = 9;
-      for (int w = 0; w < nwin; w++) {
-        run.total.add(run.ed.advance_to(dt));
-        run.ed.rebase(dt);
-      }
-      expect_windows_equal_reference(ref, run, dt, nwin);
+      windows_equal_reference(ref, run, 0.55 * mft, 9);
       momentum_and_energy(run.ed, p1, e1);
       for (int i = 0; i < run.ed.size(); i++) u1 += 0.5 * run.ed.particle(i).m * run.ed.position(i, 0.0).y;
       const double work = run.total.wall_work[0] + run.total.wall_work[1];

@@ -967,6 +967,18 @@ TEST(FixHardsphereWall, BaseCarriesTheBedsWeight)
   }
 }
 
+// a rough disc (r = 0.8, beta = 0.2) falling straight down at speed 1 from y = 3 onto a floor
+// at y = 0 that moves as `motion` says (it lands at t = 2.5), run for 4 time units
+std::string disc_onto_floor(const std::string &motion)
+{
+  return "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\nboundary p f p\n"
+         "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 3 0\n"
+         "set group all diameter 1.0\nset group all mass 1.0\nvelocity all set 0.0 -1.0 0.0\n"
+         "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.8 0.2\n"
+         "fix ed all hardsphere/ed\nfix floor all hardsphere/wall ylo 0.0 " + motion + "\n"
+         "timestep 1.0\nthermo 0\nrun 4 post no";
+}
+
 // A disc falling straight onto a rough floor that slides along x: the rough law acts on the
 // velocity relative to the floor's surface, so the disc leaves with the floor's share of its
 // tangential motion (v_x = (1 + beta) q / (1 + q) u, spin to match), and the floor feels the
@@ -974,12 +986,7 @@ TEST(FixHardsphereWall, BaseCarriesTheBedsWeight)
 TEST(FixHardsphereWall, SlidingFloorDragsAnAtom)
 {
   auto lmp = make_lammps();
-  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\nboundary p f p\n"
-                 "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 3 0\n"
-                 "set group all diameter 1.0\nset group all mass 1.0\nvelocity all set 0.0 -1.0 0.0\n"
-                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.8 0.2\n"
-                 "fix ed all hardsphere/ed\nfix floor all hardsphere/wall ylo 0.0 slide 2.0 0.0 0.0\n"
-                 "timestep 1.0\nthermo 0\nrun 4 post no");
+  run(lmp.get(), disc_onto_floor("slide 2.0 0.0 0.0"));
   const double q = 0.5, beta = 0.2, u = 2.0;
   const double vx = (1.0 + beta) * q / (1.0 + q) * u;
   EXPECT_NEAR(lmp->atom->v[0][0], vx, 1e-12);
@@ -1001,12 +1008,7 @@ TEST(FixHardsphereWall, SlidingFloorDragsAnAtom)
 TEST(FixHardsphereWall, ShakenFloorDragsAnAtomAtItsPhase)
 {
   auto lmp = make_lammps();
-  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\nboundary p f p\n"
-                 "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 single 5 3 0\n"
-                 "set group all diameter 1.0\nset group all mass 1.0\nvelocity all set 0.0 -1.0 0.0\n"
-                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.8 0.2\n"
-                 "fix ed all hardsphere/ed\nfix floor all hardsphere/wall ylo 0.0 shake x 0.3 2.0\n"
-                 "timestep 1.0\nthermo 0\nrun 4 post no");
+  run(lmp.get(), disc_onto_floor("shake x 0.3 2.0"));
   const double q = 0.5, beta = 0.2, u = 0.3 * 2.0 * std::cos(2.0 * 2.5);
   EXPECT_NEAR(lmp->atom->v[0][0], (1.0 + beta) * q / (1.0 + q) * u, 1e-12);
   EXPECT_NEAR(lmp->atom->v[0][1], 0.8, 1e-12);
