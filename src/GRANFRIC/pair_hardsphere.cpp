@@ -246,7 +246,10 @@ double PairHardsphere::init_one(int i, int j)
     cut = 0.0;
     for (int k = 1; k <= atom->ntypes; k++) cut = MAX(cut, 2.0 * maxrad[k]);
   }
-  return cut;
+  // (no atoms left: the last cut-off with atoms. LAMMPS takes a zero cut-off, but LIGGGHTS's
+  // atom sorting divides by it)
+  if (cut > 0.0) last_cut = MAX(last_cut, cut);
+  return cut > 0.0 ? cut : last_cut;
 }
 
 /* ---------------------------------------------------------------------- */

@@ -78,6 +78,7 @@ class PairHardsphere : public Pair {
   double ***raw;                  // raw pair_coeff values per type pair, for write_data/restart
   granfric::LawParams **params;   // law per type pair
   double *onerad, *maxrad;        // largest radius per type, locally and globally
+  double last_cut = 0.0;          // the largest cut-off while there were atoms
 
   void allocate();
   void set_law(int i, int j);

@@ -197,3 +197,34 @@ timestep 0.1
                            capture_output=True, text=True, errors="replace")
         assert p.returncode == 0, p.stdout[-2000:]
         assert (warning in p.stdout) == bool(exclude), p.stdout[-2000:]
+
+
+@pytest.mark.parametrize("liggghts", [0, 1])
+def test_run_on_after_every_atom_was_deleted(tmp_path, liggghts):
+    """delete_atoms group all between runs leaves an empty box: the next run goes on under both
+    hosts (LIGGGHTS's atom sorting divides by the pair cut-off, which is kept from when there
+    were atoms)"""
+    path = tmp_path / "in.empty"
+    path.write_text("""units lj
+dimension 2
+atom_style sphere
+{}
+boundary p p p
+region box block 0 10 0 10 -0.5 0.5 units box
+create_box 1 box
+create_atoms 1 single 2 5 0
+create_atoms 1 single 6 5 0
+set group all diameter 1.0
+set group all mass 1.0
+pair_style hardsphere/rough inertia disc
+pair_coeff * * 0.9 0.0
+fix ed all hardsphere/ed
+timestep 0.1
+run 5
+delete_atoms group all
+run 10
+""".format("communicate single vel yes" if liggghts else "comm_modify vel yes"))
+    p = subprocess.run([HOSTS[liggghts], "-in", str(path), "-log", "none"], cwd=str(tmp_path),
+                       capture_output=True, text=True, errors="replace")
+    assert p.returncode == 0, p.stdout[-2000:]
+    assert "10 steps with 0 atoms" in p.stdout, p.stdout[-2000:]
