@@ -169,43 +169,10 @@ def test_bad_keyword_refused_with_granfrics_message(tmp_path):
     assert "ERROR" in p.stdout and "hardsphere/ed" in p.stdout and "bogus" in p.stdout, p.stdout[-2000:]
 
 
-def test_pair_exclusions_warned_under_liggghts(tmp_path):
-    """neigh_modify exclude removes no collision of hard particles: warned, as under LAMMPS
-    (LIGGGHTS keeps its exclusion counts protected; the host program reads them)"""
-    path = tmp_path / "in.exclude"
-    path.write_text("""units lj
-dimension 2
-atom_style sphere
-communicate single vel yes
-boundary p p p
-region box block 0 10 0 10 -0.5 0.5 units box
-create_box 1 box
-create_atoms 1 single 2 5 0
-create_atoms 1 single 6 5 0
-set group all diameter 1.0
-set group all mass 1.0
-pair_style hardsphere/rough inertia disc
-pair_coeff * * 0.9 0.0
-fix ed all hardsphere/ed
-timestep 0.1
-""" + "{}run 1\n")
-    text = path.read_text()
-    warning = "WARNING: neigh_modify exclude has no effect on fix hardsphere/ed ed"
-    for exclude in ("", "neigh_modify exclude type 1 1\n"):
-        path.write_text(text.replace("{}", exclude))
-        p = subprocess.run([HOSTS[1], "-in", str(path), "-log", "none"], cwd=str(tmp_path),
-                           capture_output=True, text=True, errors="replace")
-        assert p.returncode == 0, p.stdout[-2000:]
-        assert (warning in p.stdout) == bool(exclude), p.stdout[-2000:]
-
-
-@pytest.mark.parametrize("liggghts", [0, 1])
-def test_run_on_after_every_atom_was_deleted(tmp_path, liggghts):
-    """delete_atoms group all between runs leaves an empty box: the next run goes on under both
-    hosts (LIGGGHTS's atom sorting divides by the pair cut-off, which is kept from when there
-    were atoms)"""
-    path = tmp_path / "in.empty"
-    path.write_text("""units lj
+def two_discs(liggghts, tail):
+    """two rough discs in a periodic box with fix hardsphere/ed, in the host's syntax, then
+    the lines tail"""
+    return """units lj
 dimension 2
 atom_style sphere
 {}
@@ -220,11 +187,32 @@ pair_style hardsphere/rough inertia disc
 pair_coeff * * 0.9 0.0
 fix ed all hardsphere/ed
 timestep 0.1
-run 5
-delete_atoms group all
-run 10
-""".format("communicate single vel yes" if liggghts else "comm_modify vel yes"))
-    p = subprocess.run([HOSTS[liggghts], "-in", str(path), "-log", "none"], cwd=str(tmp_path),
-                       capture_output=True, text=True, errors="replace")
+""".format("communicate single vel yes" if liggghts else "comm_modify vel yes") + tail
+
+
+def run_text(tmp_path, liggghts, text):
+    """the input text run under the host (returns the finished process)"""
+    path = tmp_path / "in.text"
+    path.write_text(text)
+    return subprocess.run([HOSTS[liggghts], "-in", str(path), "-log", "none"], cwd=str(tmp_path),
+                          capture_output=True, text=True, errors="replace")
+
+
+def test_pair_exclusions_warned_under_liggghts(tmp_path):
+    """neigh_modify exclude removes no collision of hard particles: warned, as under LAMMPS
+    (LIGGGHTS keeps its exclusion counts protected; the host program reads them)"""
+    warning = "WARNING: neigh_modify exclude has no effect on fix hardsphere/ed ed"
+    for exclude in ("", "neigh_modify exclude type 1 1\n"):
+        p = run_text(tmp_path, 1, two_discs(1, exclude + "run 1\n"))
+        assert p.returncode == 0, p.stdout[-2000:]
+        assert (warning in p.stdout) == bool(exclude), p.stdout[-2000:]
+
+
+@pytest.mark.parametrize("liggghts", [0, 1])
+def test_run_on_after_every_atom_was_deleted(tmp_path, liggghts):
+    """delete_atoms group all between runs leaves an empty box: the next run goes on under both
+    hosts (LIGGGHTS's atom sorting divides by the pair cut-off, which is kept from when there
+    were atoms)"""
+    p = run_text(tmp_path, liggghts, two_discs(liggghts, "run 5\ndelete_atoms group all\nrun 10\n"))
     assert p.returncode == 0, p.stdout[-2000:]
     assert "10 steps with 0 atoms" in p.stdout, p.stdout[-2000:]
