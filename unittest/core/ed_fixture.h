@@ -111,6 +111,9 @@ struct CoreRun {
     o.tc = ref.tc;
     o.max_collisions = cap;
     for (int d = 0; d < 3; d++) o.periodic[d] = ref.periodic[d];
+    o.shear = ref.shear;
+    o.shear_rate = ref.shear_rate;
+    shift = [s0 = ref.shift0, u = ref.shear_rate](double t) { return s0 + u * t; };
     for (const auto &w : ref.walls) {
       EDWall e;
       e.dim = w.dim;
@@ -149,8 +152,10 @@ struct CoreRun {
     }
   }
 
+  std::function<double(double)> shift;    // the reference's shear shift at time t
   void window(double dt)
   {
+    ed.set_shear_shift(shift(time));
     total.add(ed.run(dt));
     for (int i = 0; i < ed.size(); i++) ed.particle(i).t_last -= dt;    // window times restart at 0
     time += dt;

@@ -77,6 +77,11 @@ struct Reference {
   Vec3 lo, L;
   Vec3 gravity;
   double tc = 0.0;
+  // Lees-Edwards: the image one period up in y lies shift(t) further in x and moves shear_rate
+  // faster in x
+  bool shear = false;
+  double shear_rate = 0.0, shift0 = 0.0;
+  double shift(double t) const { return shift0 + shear_rate * t; }
   int ntypes = 1;
   std::vector<LawParams> laws;    // (ntypes+1)^2
   std::vector<RefParticle> p;
@@ -128,8 +133,10 @@ struct Reference {
       // within H no pair moves by more than 1.5 L - 2 amax relative to its minimum image,
       // so image offsets of -1, 0, +1 around it contain every possible contact
       double H = INF;
+      // (with shear an image moves up to the shear rate faster)
       for (int d = 0; d < dim; d++)
-        if (periodic[d]) H = std::min(H, (1.5 * L[d] - 2.0 * amax) / (2.0 * vmax + 1e-300));
+        if (periodic[d])
+          H = std::min(H, (1.5 * L[d] - 2.0 * amax) / (2.0 * vmax + 2.0 * std::fabs(shear_rate) + 1e-300));
       double best = std::min(H, t_end - time);
       int bi = -1, bj = -1, boff[3] = {0, 0, 0}, bwall = -1;
       for (int i = 0; i < n; i++) {
@@ -176,16 +183,24 @@ struct Reference {
       for (int i = 0; i < n; i++) {
         const Vec3 xi = pos(p[i], time), vi = vel(p[i], time);
         for (int j = i + 1; j < n; j++) {
-          const Vec3 r = xi - pos(p[j], time), v = vi - vel(p[j], time);
-          int k0[3] = {0, 0, 0};
-          for (int d = 0; d < dim; d++)
-            if (periodic[d]) k0[d] = (int) std::lround(r[d] / L[d]);
+          const Vec3 r0 = xi - pos(p[j], time), v0 = vi - vel(p[j], time);
           const int kx0 = periodic[0] ? 1 : 0, ky0 = periodic[1] ? 1 : 0;
           const int kz = dim == 3 && periodic[2] ? 1 : 0;
-          for (int kx = -kx0; kx <= kx0; kx++)
-            for (int ky = -ky0; ky <= ky0; ky++)
+          const int k0y = periodic[1] ? (int) std::lround(r0.y / L.y) : 0;
+          for (int ky = -ky0; ky <= ky0; ky++) {
+            // (the image o_y periods up: shifted and moving in x with shear)
+            const int oy = k0y + ky;
+            Vec3 r = r0, v = v0;
+            if (shear) {
+              r.x -= oy * shift(time);
+              v.x -= oy * shear_rate;
+            }
+            int k0[3] = {0, oy, 0};
+            for (int d = 0; d < dim; d++)
+              if (periodic[d] && d != 1) k0[d] = (int) std::lround(r[d] / L[d]);
+            for (int kx = -kx0; kx <= kx0; kx++)
               for (int k3 = -kz; k3 <= kz; k3++) {
-                const int off[3] = {k0[0] + kx, k0[1] + ky, k0[2] + k3};
+                const int off[3] = {k0[0] + kx, oy, k0[2] + k3};
                 if (p[i].last_partner == j && p[j].last_partner == i &&
                     off[0] == p[i].last_off[0] && off[1] == p[i].last_off[1] &&
                     off[2] == p[i].last_off[2])
@@ -200,6 +215,7 @@ struct Reference {
                   for (int d = 0; d < 3; d++) boff[d] = off[d];
                 }
               }
+          }
         }
       }
       if (next_kick < kick_times.size() && kick_times[next_kick] <= time + best &&
@@ -238,17 +254,22 @@ struct Reference {
       RefParticle &a = p[bi], &b = p[bj];
       bring(a, time);
       bring(b, time);
-      const Vec3 r = a.x - b.x - Vec3(boff[0] * L.x, boff[1] * L.y, boff[2] * L.z);
+      Vec3 r = a.x - b.x - Vec3(boff[0] * L.x, boff[1] * L.y, boff[2] * L.z);
+      Vec3 vb = b.v;    // (b's image's velocity)
+      if (shear) {
+        r.x -= boff[1] * shift(time);
+        vb.x += boff[1] * shear_rate;
+      }
       const Vec3 nn = (1.0 / norm(r)) * r;
       LawParams law = laws[a.type * (ntypes + 1) + b.type];
       const double sa = time - a.t_last, sb = time - b.t_last;
       if (tc > 0 && ((sa >= 0 && sa < tc) || (sb >= 0 && sb < tc))) law = law.elastic();
       const Collision c =
-          collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body{b.v, b.w, b.m, b.a, b.q}, nn);
+          collide(law, Body{a.v, a.w, a.m, a.a, a.q}, Body{vb, b.w, b.m, b.a, b.q}, nn);
       tally_virial(r, a.m * (c.v1 - a.v));
       a.v = c.v1;
       a.w = c.w1;
-      b.v = c.v2;
+      b.v = c.v2 - (vb - b.v);
       b.w = c.w2;
       a.t_last = b.t_last = time;
       a.last_partner = bj;

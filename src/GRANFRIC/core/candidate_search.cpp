@@ -102,12 +102,19 @@ inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p,
   }
   v2d r = xy(a) - bxy;
   double r2 = a.z - b2;
+  v2d v = xy(u) - wxy;
   if (o0 | o1 | o2) {
     const v2d s = {o0 * P.x, o1 * P.y};
     r -= s;
     if (DIM == 3) r2 -= o2 * P.z;
+    // (Lees-Edwards: an image o1 periods up lies o1 s(tr) further in x and moves o1 times the
+    // shear rate faster; the negated shift gives the negated numbers, so that either partner
+    // computes the same time)
+    if (o1 && opt.shear) {
+      r[0] -= o1 * shift_at(tr);
+      v[0] -= image_speed(o1);
+    }
   }
-  const v2d v = xy(u) - wxy;
   const double v2 = DIM == 3 ? u.z - w2 : 0.0;
   const v2d rv = r * v, rr = r * r;
   const double b = DIM == 3 ? (rv[0] + rv[1]) + r2 * v2 : rv[0] + rv[1];
@@ -266,8 +273,8 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
   if (FULL) {
     // at an edge of the grid: the cells as around() finds them, with their image shifts, and
     // the occupied ones gathered as above
-    int cell[27], first[27], of[27], nfirst = 0;
-    int8_t shift[27][3];
+    int cell[AROUND], first[AROUND], of[AROUND], nfirst = 0;
+    int8_t shift[AROUND][3];
     const int ncell = around(i, cell, shift);
     for (int f = 0; f < ncell; f++) {
       const int j = head[cell[f]];
@@ -287,9 +294,15 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
       int uy = c[1] + dy, ky = 0;
       if (uy < 0) { if (!opt.periodic[1]) continue; uy += nc[1]; ky = -1; }
       else if (uy >= nc[1]) { if (!opt.periodic[1]) continue; uy -= nc[1]; ky = 1; }
-      for (int dx = x0; dx <= x1; dx++) {
+      // (Lees-Edwards: a row across a y face is shifted; its 4 cells next to i, see
+      // sheared_row, are all scanned)
+      int su[4], sk[4];
+      const bool sheared = opt.shear && ky != 0;
+      const int sx0 = sheared ? 0 : x0, sx1 = sheared ? sheared_row(c[0], ky, su, sk) - 1 : x1;
+      for (int dx = sx0; dx <= sx1; dx++) {
         int ux = c[0] + dx, kx = 0;
-        if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
+        if (sheared) { ux = su[dx]; kx = sk[dx]; }
+        else if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = images[j].next)
@@ -368,7 +381,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
     auto test = [&](int j, int o0, int o1, int o2) {
       const long kj = key(j);
       if (ki > kj || (ki == kj && i >= j)) return;
-      const Vec3 r = xi - pos(j, now) - periods(o0, o1, o2);
+      const Vec3 r = xi - pos(j, now) - image(o0, o1, o2, now);
       const double sigma = flights[i].a + flights[j].a, lim = sigma * (1.0 - tol), r2 = norm2(r);
       // (the root only near contact: a pair is far when r2 exceeds lim^2 by more than the
       // roundings of the two ways of comparing)
@@ -389,8 +402,8 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
       for (int m = 0; m < list_counts[i]; m++) test(e[m].j, e[m].o[0], e[m].o[1], e[m].o[2]);
       continue;
     }
-    int cell[27];
-    int8_t k[27][3];
+    int cell[AROUND];
+    int8_t k[AROUND][3];
     const int ncell = around(i, cell, k);
     for (int f = 0; f < ncell; f++)
       for (int j = head[cell[f]]; j >= 0; j = images[j].next) {
@@ -440,7 +453,7 @@ void EDCore::predict_all()
     return;
   }
   const int n = (int) flights.size();
-  bool half = true;
+  bool half = !opt.shear;    // (with shear every particle scans its own neighbourhood)
   for (int d = 0; d < opt.dim; d++) half = half && nc[d] >= 3;
   for (int i = 0; i < n; i++) {
     if (schedules[i].gone) {

@@ -165,6 +165,14 @@ void EDCore::setup_cells()
     nc[d] = std::max(1, nc[d] / 2);
     cw[d] = L[d] / nc[d];
   }
+  // (Lees-Edwards: the top and the bottom row must be different rows, each next to one face)
+  if (opt.shear && nc[1] < 3 && L[1] >= 3.0 * sigma) {
+    nc[1] = 3;
+    cw[1] = L[1] / 3;
+  }
+  if (opt.shear && nc[1] < 3)
+    throw std::invalid_argument("shear (Lees-Edwards) needs a box at least 3 cells (3 times the largest "
+                                "contact distance) long in y; it is " + std::to_string(L[1]));
   for (int d = 0; d < 3; d++) {
     kcells[d] = opt.periodic[d] ? (double) nc[d] : 0.0;
     kper[d] = opt.periodic[d] ? 0.0 : P[d];
@@ -181,8 +189,15 @@ void EDCore::setup_cells()
 
 void EDCore::place(int i)
 {
-  const Vec3 x = pos(i, now);    // (with lists: the new list centre)
+  Vec3 x = pos(i, now);    // (with lists: the new list centre)
   Schedule &s = schedules[i];
+  if (opt.shear) {
+    // (Lees-Edwards: the image k1 periods up in y lies k1 s further in x; its x cell is that of
+    // the position less the shift)
+    int c, k;
+    locate(1, x[1], c, k);
+    x.x -= k * shift_at(now);
+  }
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
       s.c[d] = 0;
@@ -202,6 +217,16 @@ void EDCore::place(int i)
   }
 }
 
+// Lees-Edwards: a particle's position and velocity as its x cell sees them: less the shift and
+// the shear rate of its image in y
+void EDCore::sheared_frame(int i, Vec3 &x, Vec3 &v) const
+{
+  const int k = images[i].k[1];
+  if (!k) return;
+  x.x -= k * shift_at(now);
+  v.x -= image_speed(k);
+}
+
 // cell c (0 .. nc-1) and periodic image k of coordinate xd in dimension d
 void EDCore::locate(int d, double xd, int &c, int &k) const
 {
@@ -212,10 +237,11 @@ void EDCore::locate(int d, double xd, int &c, int &k) const
   c = (int) (u - kk * nc[d]);
 }
 
-// The neighbouring cells of i's cell (3^dim of them, fewer at non-periodic edges) as cell
-// indices and the image shifts k (-1, 0, 1 per dimension) at which they are reached; returns
-// how many
-int EDCore::around(int i, int cell[27], int8_t shift[27][3]) const
+// The neighbouring cells of i's cell (3^dim of them, fewer at non-periodic edges; with shear
+// 4 in each row across a y face, see sheared_row) as cell indices and the image shifts k (-1,
+// 0, 1 per dimension, in x up to -2 or 2 across a sheared face) at which they are reached;
+// returns how many
+int EDCore::around(int i, int cell[AROUND], int8_t shift[AROUND][3]) const
 {
   const int16_t *c = schedules[i].c;
   int n = 0;
@@ -249,13 +275,35 @@ int EDCore::around(int i, int cell[27], int8_t shift[27][3]) const
     }
   }
   for (int z = 0; z < m[2]; z++)
-    for (int y = 0; y < m[1]; y++)
-      for (int x = 0; x < m[0]; x++) {
-        cell[n] = (u[2][z] * nc[1] + u[1][y]) * nc[0] + u[0][x];
-        shift[n][0] = (int8_t) k[0][x], shift[n][1] = (int8_t) k[1][y], shift[n][2] = (int8_t) k[2][z];
+    for (int y = 0; y < m[1]; y++) {
+      int su[4], sk[4];
+      const bool sheared = opt.shear && k[1][y] != 0;
+      const int mx = sheared ? sheared_row(c[0], k[1][y], su, sk) : m[0];
+      for (int x = 0; x < mx; x++) {
+        cell[n] = (u[2][z] * nc[1] + u[1][y]) * nc[0] + (sheared ? su[x] : u[0][x]);
+        shift[n][0] = (int8_t) (sheared ? sk[x] : k[0][x]);
+        shift[n][1] = (int8_t) k[1][y], shift[n][2] = (int8_t) k[2][z];
         n++;
       }
+    }
   return n;
+}
+
+// Lees-Edwards: the x cells (u) and their image shifts in x (k) of the row across a y face
+// (ky = 1: the bottom row seen one period up, shifted by s in x; ky = -1: the top row one
+// period down) that can hold a partner of a particle in x cell c0. With the shift s = (m + f)
+// cell widths (0 <= f < 1, m = shear_m), a partner lies within one cell width of c0 after the
+// shift: the 4 cells from c0 - m - 2 (ky = 1) or c0 + m - 1 (ky = -1) on, 3 of them while f = 0.
+// Returns 4.
+int EDCore::sheared_row(int c0, int ky, int u[4], int k[4]) const
+{
+  const int first = ky > 0 ? c0 - shear_m - 2 : c0 + shear_m - 1;
+  for (int e = 0; e < 4; e++) {
+    const int x = first + e;
+    k[e] = x >= 0 ? x / nc[0] : -((-x + nc[0] - 1) / nc[0]);
+    u[e] = x - k[e] * nc[0];
+  }
+  return 4;
 }
 
 void EDCore::cell_insert(int i)
@@ -277,8 +325,10 @@ void EDCore::cell_remove(int i)
   *link = images[i].next;
 }
 
-void EDCore::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
+void EDCore::predict_crossing(int i, const Vec3 &xs, const Vec3 &vs)
 {
+  Vec3 xi = xs, vi = vs;
+  if (opt.shear) sheared_frame(i, xi, vi);
   if (opt.dim == 2) {
     if (has_gravity)
       predict_crossing_t<2, true>(i, xi, vi);
@@ -359,12 +409,24 @@ void EDCore::cross(int i)
   const int d = p.xdim, dir = p.xdir;
   cell_remove(i);
   p.c[d] += dir;
+  bool wrapped = true;
   if (p.c[d] == nc[d]) {
     p.c[d] = 0;
     images[i].k[d]++;
   } else if (p.c[d] < 0) {
     p.c[d] = nc[d] - 1;
     images[i].k[d]--;
+  } else {
+    wrapped = false;
+  }
+  // (Lees-Edwards: through a y face the particle enters an image shifted in x, where its x cell
+  // is found afresh, and everything around it is new)
+  const bool moved = opt.shear && d == 1 && wrapped;
+  if (moved) {
+    int c, k;
+    locate(0, pos(i, now).x - images[i].k[1] * shift_at(now), c, k);
+    p.c[0] = (int16_t) c;
+    images[i].k[0] = k;
   }
   cell_insert(i);
   stats.crossings++;
@@ -372,7 +434,7 @@ void EDCore::cross(int i)
   (void) q;
   const Vec3 xi = pos(i, now), vi = vel(i, now);    // (the stored state is not re-rounded)
   predict_crossing(i, xi, vi);
-  if (p.ct < NEVER && stale(p)) {
+  if (moved || (p.ct < NEVER && stale(p))) {
     // the stored collision candidate went stale: look at every neighbouring cell
     p.ct = NEVER;
     p.cpartner = -1;

@@ -169,8 +169,19 @@ class EDCore {
   std::vector<double> qt = {0.4, 0.4};   // moment of inertia / (m a^2) by type (configure)
   Vec3 L;                                // box lengths
   Vec3 P;                                // periods of image shifts (L if periodic, else period)
-  // an image shift of a, b, c periods as a displacement
+  // an image shift of a, b, c periods as a displacement (without the shear shift: image())
   Vec3 periods(int a, int b, int c) const { return Vec3(a * P.x, b * P.y, c * P.z); }
+  // Lees-Edwards (EDOptions::shear): the x shift of the image one period up in y, at window time
+  // t, and the displacement and velocity of the image at shift a, b, c (b periods up in y)
+  double shear_s0 = 0.0;                 // the shift at window time 0
+  double shift_at(double t) const { return shear_s0 + opt.shear_rate * t; }
+  Vec3 image(int a, int b, int c, double t) const
+  {
+    Vec3 r = periods(a, b, c);
+    if (b && opt.shear) r.x += b * shift_at(t);
+    return r;
+  }
+  double image_speed(int b) const { return b * opt.shear_rate; }
   bool framed = false;                   // open dimensions with a period: frames in use
   bool lanes = false;                    // offer_lanes() where it applies (opt.simd, AVX2)
 
@@ -301,7 +312,20 @@ class EDCore {
   void cell_remove(int i);
   // the cells around i's (3^dim, fewer at non-periodic edges): cell indices and the image
   // shifts (-1, 0, 1 per dimension) at which they are reached; returns how many
-  int around(int i, int cell[27], int8_t shift[27][3]) const;
+  static constexpr int AROUND = 36;     // (the most: 3 rows of 3 + 3 + 4 cells, with shear)
+  int around(int i, int cell[AROUND], int8_t shift[AROUND][3]) const;
+  // ---- Lees-Edwards (shear.cpp): the shift in cell widths, m (0 <= m < nc[0], see
+  // sheared_row), changes at shear ticks, at which the pairs of the cells that come next to
+  // each other across the y faces become candidates
+  int shear_m = 0;
+  double shear_next = NEVER;             // the next shear tick's time
+  int sheared_row(int c0, int ky, int u[4], int k[4]) const;
+  void sheared_frame(int i, Vec3 &x, Vec3 &v) const;
+  void shear_start();                    // (start(): the shift into [0, L_x), before the cells)
+  void shear_cells();                    // (start(): m and the first tick, after the cells)
+  void shear_tick();
+  void shear_relabel(int dir);           // the shift by dir periods less: images follow
+
   // next cell crossing only; xi, vi: the particle's state now
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
   template <int DIM, bool GRAV>

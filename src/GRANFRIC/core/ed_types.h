@@ -156,6 +156,15 @@ struct EDOptions {
   // reaches this value (the predictions keep what they were; for tests of that restart, which
   // the 32-bit clock otherwise reaches after about 4e9 collisions)
   uint32_t tick_last = 0xfffffffeu;
+  // Lees-Edwards boundaries (simple shear in the x-y plane): the periodic image one period up in
+  // y lies shifted by s(t) in x and moves at shear_rate = ds/dt in x relative to the box, as in
+  // a periodic triclinic box whose tilt xy = s(t) changes at that rate. x and y must be periodic;
+  // candidates come from cells (not lists). The shift at window time 0 is
+  // EventDriven::set_shear_shift's. Positions stay unwrapped: a particle that leaves the box
+  // through a y face keeps its stored state, and its image inside the box is its position less
+  // one lattice vector (s, L_y) and its velocity less (shear_rate, 0).
+  bool shear = false;
+  double shear_rate = 0.0;
 
   // Every field, in one fixed order: f(name, role, field of s...) for each, with the fields of
   // every s given by reference. role DEFINING: part of the configuration, whose change makes a
@@ -176,6 +185,7 @@ struct EDOptions {
     f("neighbours", DEFINING, s.neighbours...), f("list_skin", DEFINING, s.list_skin...);
     f("simd", TUNING, s.simd...), f("prefetch_bytes", TUNING, s.prefetch_bytes...);
     f("tick_last", TUNING, s.tick_last...);
+    f("shear", DEFINING, s.shear...), f("shear_rate", DEFINING, s.shear_rate...);
   }
   // every field by name and value, in the order of each_field (for messages and logs)
   std::string describe() const;

@@ -64,19 +64,22 @@ void EDCore::collide_pair(int e)
   Collider &q = colliders[j];
   advance(i, t);
   advance(j, t);
-  const Vec3 r = hp.x - hq.x - periods(off[0], off[1], off[2]);
+  const Vec3 r = hp.x - hq.x - image(off[0], off[1], off[2], t);
   const Vec3 n = (1.0 / norm(r)) * r;
+  const double du = image_speed(off[1]);    // (Lees-Edwards: j's image moves faster in x)
 
   LawParams law = laws[s.type * (ntypes + 1) + schedules[j].type];
   const bool tc_elastic = tc_recent(i, t) || tc_recent(j, t);
   if (!last_collision.empty()) last_collision[i] = last_collision[j] = t;
   if (tc_elastic) law = law.elastic();
   Body b1{hp.v, p.w, p.m, hp.a, qt[s.type]}, b2{hq.v, q.w, q.m, hq.a, qt[schedules[j].type]};
+  if (du != 0.0) b2.v.x += du;
   const Collision c = collide(law, b1, b2, n);
   hp.v = c.v1;
   p.w = c.w1;
   hq.v = c.v2;
   q.w = c.w2;
+  if (du != 0.0) hq.v.x -= du;
   if (tracking_fast()) {
     note_speed(i, hp.v);
     note_speed(j, hq.v);
@@ -138,7 +141,9 @@ void EDCore::start_common()
   for (int i = 0; i < n; i++)
     if (!schedules[i].gone) amax = std::max(amax, flights[i].a);
   setup_lists(2.0 * amax * (1.0 + 1e-10));
+  shear_start();
   setup_cells();
+  shear_cells();
   renumber(cell_order());
   if (lists && !build_all_lists()) lists_to_cells();
   predict_all();
@@ -179,6 +184,10 @@ EDStats EventDriven::advance_to(double t_end)
     const int i = queue.top();
     const double et = queue.top_time();
     const Schedule &p = schedules[i];
+    if (shear_next < t_end && !(et < shear_next) && !(g < gtimes.size() && gtimes[g] < shear_next)) {
+      shear_tick();
+      continue;
+    }
     if (g < gtimes.size() && gtimes[g] < t_end && !(et < gtimes[g])) {
       global_event((int) g++);
       continue;
@@ -230,6 +239,8 @@ void EventDriven::rebase(double dt)
   queue.shift(dt);
   now -= dt;
   clock += dt;
+  shear_s0 += opt.shear_rate * dt;
+  shear_next -= dt;
 }
 
 EDStats EventDriven::run(double t_end)

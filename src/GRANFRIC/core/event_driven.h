@@ -32,6 +32,7 @@
 //   global_events.cpp    instants at which every particle may change (kicks)
 //   prefetch.cpp         asking the memory ahead for the records of the events to come
 //   cells.cpp            the cell grid, cell order and cell crossings
+//   shear.cpp            Lees-Edwards boundaries: the sheared images' cells and shear ticks
 //   candidate_search.cpp the search for collision candidates and their contact times (four at a
 //                        time in AVX2 lanes: candidate_lanes.cpp), and for overlaps
 //   neighbour_lists.cpp  neighbour lists and their rebuild events
@@ -204,6 +205,12 @@ class EventDriven : private EDCore {
         queue.memory_bytes() + fast.capacity() * sizeof(fast[0]) + gtimes.capacity() * sizeof(double);
   }
 
+  // Lees-Edwards (EDOptions::shear): the x shift s of the image one period up in y at window
+  // time 0 (before start(); rebase() advances it by the shear rate). start() and the window's
+  // events keep it within [0, L_x] by whole periods (the images' labels follow), so that it is
+  // s plus or minus whole periods of x afterwards
+  void set_shear_shift(double s);
+  double shear_shift() const { return shear_s0; }
   // absolute time of window time 0 (the phase of vibrating walls); rebase() advances it
   void set_clock(double t) { clock = t; }
   double get_clock() const { return clock; }

@@ -35,7 +35,7 @@ void EDCore::setup_lists(double sigma)
   for (int d = 0; d < opt.dim; d++) vol *= L[d];
   for (const Schedule &s : schedules) present += !s.gone;
   lists = opt.neighbours == EDOptions::LISTS ||
-      (opt.neighbours == EDOptions::AUTO && !has_gravity && vol > 0.0 &&
+      (opt.neighbours == EDOptions::AUTO && !has_gravity && !opt.shear && vol > 0.0 &&
        choose_lists(opt.dim, sigma, present / vol, present));
   list_centres.clear();
   list_entries.clear();
@@ -84,8 +84,8 @@ bool EDCore::list_build(int i, bool higher_only)
 template <bool HIGHER>
 bool EDCore::list_build_t(int i)
 {
-  int cell[27];
-  int8_t shift[27][3];
+  int cell[AROUND];
+  int8_t shift[AROUND][3];
   const int ncell = around(i, cell, shift);
   const int *pk = images[i].k;
   const CellImage *IM = images.data();

@@ -60,6 +60,12 @@ static void check_options(const EDOptions &o, int nt, const std::vector<LawParam
   if (!(o.list_skin >= 0.0)) throw std::invalid_argument("the list skin must be >= 0");
   if (o.max_collisions < 1 || o.max_collisions > 2000000000L)
     throw std::invalid_argument("the collision cap per particle and window must be 1 to 2e9");
+  if (!std::isfinite(o.shear_rate) || (o.shear_rate != 0.0 && !o.shear))
+    throw std::invalid_argument("a shear rate needs shear on, and a finite value");
+  if (o.shear && !(o.periodic[0] && o.periodic[1]))
+    throw std::invalid_argument("shear (Lees-Edwards) needs periodic x and y");
+  if (o.shear && o.neighbours == EDOptions::LISTS)
+    throw std::invalid_argument("shear (Lees-Edwards) works with cells, not neighbour lists");
   for (int d = 0; d < o.dim; d++)
     if (!o.periodic[d] && !walled[d] && !o.open[d])
       throw std::invalid_argument("a non-periodic dimension needs at least one wall");
@@ -69,7 +75,8 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
 {
   check_options(o, nt, table);
   opt = o;
-  lanes = o.simd && have_lanes();    // (the scans that use them are 3d without gravity)
+  // (the scans that use them are 3d without gravity and without shear)
+  lanes = o.simd && have_lanes() && !o.shear;
   // the last collision times exist only with the TC model
   if (o.tc > 0.0 && last_collision.size() != flights.size()) last_collision.assign(flights.size(), -INF);
   if (!(o.tc > 0.0)) last_collision.clear();

@@ -105,7 +105,7 @@ bool EventDriven::nudge(int e, const double *x, const double *v, const double *w
   Flight &p = flights[i];
   const Schedule &s = schedules[i];
   if (!started) throw std::logic_error("EventDriven::nudge() before start()");
-  if (s.gone || lists) return false;
+  if (s.gone || lists || opt.shear) return false;    // (with shear: changed())
   for (int d = 0; d < opt.dim; d++) {    // the cell (and image) place() would give
     int c, k;
     locate(d, x[d], c, k);

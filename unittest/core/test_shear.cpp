@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: GPL-2.0-or-later
+// Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
+// Core tests of Lees-Edwards boundaries (EDOptions::shear): trajectories in a sheared periodic
+// box equal the brute-force reference, whose images across the y faces are shifted and move in
+// x independently of the core's cells and shear ticks; with the queue kept across windows; a
+// static tilt; the shear work against the energy balance; the options refused.
+#include "ed_fixture.h"
+
+#include <gtest/gtest.h>
+
+using namespace granfric;
+using namespace granfric_test;
+
+namespace {
+
+struct ShearCase {
+  int law, dim, n;
+  double phi, rate, dt_mft, T_mft;    // rate: the shear rate in units of the rms speed
+};
+
+class Sheared : public ::testing::TestWithParam<ShearCase> {};
+
+double rms_speed(const Reference &ref)
+{
+  double s = 0.0;
+  for (const auto &a : ref.p) s += norm2(a.v);
+  return std::sqrt(s / ref.p.size());
+}
+
+// a system of the case with its shear: the image one period up moves at rate times the rms
+// speed, and starts shifted by a third of the box
+Reference sheared_system(const ShearCase &c, unsigned seed)
+{
+  SystemSpec s;
+  s.n = c.n;
+  s.dim = c.dim;
+  s.phi = c.phi;
+  s.q = c.dim == 2 ? 0.5 : 0.4;
+  s.seed = seed;
+  Reference ref = make_system(s, law_of(c.law));
+  ref.shear = true;
+  ref.shear_rate = c.rate * rms_speed(ref);
+  ref.shift0 = 0.37 * ref.L.x;
+  return ref;
+}
+
+TEST_P(Sheared, EqualsBruteForceReference)
+{
+  const ShearCase c = GetParam();
+  Reference ref = sheared_system(c, 300 + c.law * 10 + c.dim + c.n);
+  const double mft = mean_free_time(ref);
+  const double T = c.T_mft * mft;
+  CoreRun run(ref);
+  run.run(T, c.dt_mft * mft);
+  ref.run_until(T);
+  ASSERT_GE(ref.collisions, std::max(4, c.n));
+  // the shift went past two cells (of width about a diameter) at least
+  EXPECT_GT(std::fabs(ref.shear_rate) * T, 2.0) << "too little shear";
+  EXPECT_EQ(run.total.collisions, ref.collisions);
+  EXPECT_NEAR(run.total.dE, ref.dE, 1e-9 * std::fabs(ref.dE));
+  double vir = 0.0;
+  for (int k = 0; k < 3; k++) vir += std::fabs(ref.virial[k]);
+  for (int k = 0; k < 6; k++) EXPECT_NEAR(run.total.virial[k], ref.virial[k], 1e-9 * vir) << "component " << k;
+  double vrms = rms_speed(ref), dx = 0, dv = 0;
+  for (size_t i = 0; i < ref.p.size(); i++) {
+    dx = std::max(dx, norm(ref.p[i].x - run.ed.particle((int) i).x));
+    dv = std::max(dv, norm(ref.p[i].v - run.ed.particle((int) i).v) / vrms);
+  }
+  EXPECT_LT(dx, 1e-9);
+  EXPECT_LT(dv, 1e-9);
+}
+
+std::string shear_name(const ::testing::TestParamInfo<ShearCase> &info)
+{
+  static const char *law[] = {"rough", "walton", "jz"};
+  const ShearCase &c = info.param;
+  return std::string(law[c.law]) + "_" + std::to_string(c.dim) + "d_n" + std::to_string(c.n) + "_" +
+      std::to_string(info.index);
+}
+
+// shear rates of either sign, from slow to faster than the particles; windows from 0.05 to 10
+// mean free times
+INSTANTIATE_TEST_SUITE_P(
+    Core, Sheared,
+    ::testing::Values(ShearCase{0, 2, 3, 0.12, 1.0, 0.3, 6}, ShearCase{1, 2, 20, 0.3, 1.0, 1.0, 6},
+                      ShearCase{2, 2, 20, 0.3, -2.0, 10.0, 6}, ShearCase{0, 3, 20, 0.2, 1.5, 0.3, 6},
+                      ShearCase{1, 3, 20, 0.2, -1.5, 10.0, 6}, ShearCase{0, 2, 200, 0.3, 1.0, 2.0, 4},
+                      ShearCase{2, 2, 200, 0.1, -0.3, 0.5, 3}, ShearCase{1, 3, 200, 0.25, 4.0, 1.0, 3},
+                      ShearCase{0, 3, 200, 0.1, 3.0, 0.05, 3}),
+    shear_name);
+
+// start / advance_to / rebase with the queue kept, as fix hardsphere/ed runs, and gravity
+TEST(Shear, QueueKeptAcrossWindowsEqualsReference)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    Reference ref = sheared_system(ShearCase{1, dim, 150, 0.25, 3.0, 0, 0}, 71 + dim);
+    ref.gravity = dim == 2 ? Vec3(0.0, 0.0, 0.0) : Vec3(0.0, 0.0, -0.4);
+    ref.shift0 = 0.93 * ref.L.x;    // (close to a period: the core's shift passes it)
+    ref.tc = 0.005;
+    const double mft = mean_free_time(ref);
+    CoreRun run(ref);
+    run.ed.set_shear_shift(ref.shift0);
+    run.ed.start();
+    const double dt = 0.37 * mft;
+    const int nwin = 12;
+    for (int w = 0; w < nwin; w++) {
+      run.total.add(run.ed.advance_to(dt));
+      run.ed.rebase(dt);
+    }
+    ref.run_until(nwin * dt);
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    for (size_t i = 0; i < ref.p.size(); i++) {
+      EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
+      EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
+    }
+    // the shift the core keeps is the reference's, less whole periods (at least one)
+    const double s = ref.shift(nwin * dt), k = std::round((s - run.ed.shear_shift()) / ref.L.x);
+    EXPECT_NEAR(run.ed.shear_shift() + k * ref.L.x, s, 1e-9 * ref.L.x);
+    EXPECT_GE(k, 1.0);
+  }
+}
+
+// a static tilt (shift without rate): the same as the reference's tilted lattice
+TEST(Shear, StaticTiltEqualsReference)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    Reference ref = sheared_system(ShearCase{0, dim, 60, 0.3, 0.0, 0, 0}, 81 + dim);
+    ref.shift0 = -1.3 * ref.L.x;
+    const double mft = mean_free_time(ref);
+    CoreRun run(ref);
+    run.run(5 * mft, 0.7 * mft);
+    ref.run_until(5 * mft);
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    for (size_t i = 0; i < ref.p.size(); i++) EXPECT_LT(norm(run.ed.particle((int) i).x - ref.p[i].x), 1e-9);
+  }
+}
+
+// Elastic smooth particles: no energy is lost in collisions, and the shear heats the gas: the
+// kinetic energy of the velocities relative to the streaming profile u (y - lo_y) / L_y grows
+// (viscous heating), and that profile is continuous across the y faces, where a particle's
+// stored velocity is its image's
+TEST(Shear, ElasticGasHeats)
+{
+  Reference ref = sheared_system(ShearCase{0, 2, 200, 0.2, 3.0, 0, 0}, 91);
+  ref.laws.assign(9, LawParams::rough(1.0, -1.0));
+  auto peculiar = [&](const CoreRun &r) {
+    double e = 0.0;
+    for (int i = 0; i < r.ed.size(); i++) {
+      const auto p = r.ed.particle(i);
+      Vec3 c = p.v;
+      c.x -= ref.shear_rate * (p.x.y - ref.lo.y) / ref.L.y;
+      e += 0.5 * p.m * norm2(c);
+    }
+    return e;
+  };
+  for (auto &a : ref.p) a.v.x += ref.shear_rate * (a.x.y - ref.lo.y) / ref.L.y;    // (the profile at the start)
+  CoreRun run(ref);
+  const double e0 = peculiar(run), mft = mean_free_time(ref);
+  run.run(20 * mft, 2 * mft);
+  EXPECT_GT(peculiar(run), 1.2 * e0);
+  EXPECT_NEAR(run.total.dE, 0.0, 1e-9 * e0);
+}
+
+TEST(Shear, OptionsRefused)
+{
+  EventDriven ed;
+  std::vector<LawParams> laws(4, LawParams::rough(0.9, 0.0));
+  EDOptions o;
+  o.dim = 2;
+  o.shear_rate = 1.0;
+  EXPECT_THROW(ed.configure(o, 1, laws), std::invalid_argument);    // (a rate without shear)
+  o.shear = true;
+  o.periodic[1] = false;
+  o.open[1] = true;
+  EXPECT_THROW(ed.configure(o, 1, laws), std::invalid_argument);    // (y not periodic)
+  o.periodic[1] = true;
+  o.open[1] = false;
+  o.neighbours = EDOptions::LISTS;
+  EXPECT_THROW(ed.configure(o, 1, laws), std::invalid_argument);    // (lists)
+  o.neighbours = EDOptions::CELLS;
+  o.shear_rate = INFINITY;
+  EXPECT_THROW(ed.configure(o, 1, laws), std::invalid_argument);
+  o.shear_rate = 1.0;
+  EXPECT_NO_THROW(ed.configure(o, 1, laws));
+  EXPECT_THROW(ed.set_shear_shift(NAN), std::invalid_argument);
+}
+
+}    // namespace
