@@ -203,21 +203,11 @@ void FixHardsphereED::init()
     error->all(FLERR, "Fix hardsphere/ed requires atom_style sphere (radius, mass, omega)");
   if (igroup != 0)
     error->all(FLERR, "Fix hardsphere/ed must be applied to group all (it moves every atom)");
-  if (domain->triclinic) error->all(FLERR, "Fix hardsphere/ed does not support triclinic boxes");
   // (a window of length dt <= 0 would move the atoms backward or not at all)
   if (!(update->dt > 0.0))
     error->all(FLERR, "Fix hardsphere/ed requires a positive timestep (timestep = {}): the step "
                "is the window in which the atoms move forward", update->dt);
-  // a shrink-wrapped non-periodic boundary may move (the fix's edge cells extend outward), and
-  // fix balance may move the subdomains, but no fix may change the box (deform, barostats)
-  balancing = false;
-  for (const auto &f : host::fixes(modify)) {
-    balancing = balancing || host::moves_subdomains(f);
-    if (host::changes_box(f))
-      error->all(FLERR, "Fix hardsphere/ed does not support a box whose size or shape changes "
-                 "during the run (fix {} {}): the hard-sphere windows need a fixed box (fix "
-                 "balance, which moves only the subdomain boundaries, is supported)", f->id, f->style);
-  }
+  check_box_changes();
   // with run_style respa the window is the outermost step (collisions need no forces)
   nlevels_respa = 0;
   if (utils::strmatch(update->integrate_style, "^respa"))
@@ -227,6 +217,11 @@ void FixHardsphereED::init()
   refuse_rerun();
   warn_ignored_inputs();
   run->atoms.note_positions(run->epoch_time(update->ntimestep));
+  if (comm->nprocs > 1 && parallel == DOMAIN && domain->triclinic && comm->me == 0)
+    error->warning(FLERR,
+                   "Fix hardsphere/ed: a sheared (triclinic) box runs gathered windows on every "
+                   "rank (parallel domain does not take sheared images yet): exact, no parallel "
+                   "speedup");
   if (comm->nprocs > 1 && parallel == GATHER && comm->me == 0)
     error->warning(FLERR,
                    "Fix hardsphere/ed parallel gather on {} MPI ranks: every rank processes the "
@@ -339,7 +334,7 @@ void FixHardsphereED::initial_integrate(int vflag)
     run->check_overlaps = true;
     run->added_at = update->ntimestep - 1;    // (this window starts where that step ended)
   }
-  if (parallel == DOMAIN && comm->nprocs > 1) {
+  if (parallel == DOMAIN && comm->nprocs > 1 && !domain->triclinic) {
     const bool done = dwin->run(t0, dt);
     totals[HardsphereRunState::REPAIR_ROUNDS] += dwin->repair_rounds();
     totals[HardsphereRunState::RANKS_REDONE] += (double) dwin->windows_redone();

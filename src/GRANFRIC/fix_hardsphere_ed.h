@@ -127,6 +127,7 @@ class FixHardsphereED : public Fix {
   // behind a wall, absurd scales
   void check_walls_cross() const;
   void check_box_fits_atoms() const;
+  void check_box_changes();                // (sets balancing)
   void check_atoms_between_walls() const;
   void check_plane();                      // (2d: every atom at z = 0, vz = 0, spin about z)
   void refuse_rerun() const;

@@ -205,6 +205,47 @@ void FixHardsphereED::check_walls_cross() const
     }
 }
 
+// The box stays as it is during a run, or is sheared: a shrink-wrapped non-periodic boundary
+// may move (the fix's edge cells extend outward) and fix balance may move the subdomains
+// (balancing), but no fix may change the box's size or shape (barostats, fix deform), except
+// fix deform changing the xy tilt alone with remap v: simple shear through Lees-Edwards
+// images. A triclinic box must then be tilted in xy only and periodic in x and y.
+void FixHardsphereED::check_box_changes()
+{
+  balancing = false;
+  const Fix *deform = nullptr;
+  for (const auto &f : host::fixes(modify)) {
+    balancing = balancing || host::moves_subdomains(f);
+    if (!host::changes_box(f)) continue;
+    if (host::shears_xy_only(f) && utils::strmatch(f->style, "^deform") && !deform) {
+      deform = f;
+      continue;
+    }
+    error->all(FLERR, "Fix hardsphere/ed does not support a box whose size or shape changes "
+               "during the run (fix {} {}): the hard-sphere windows need a fixed box, or one "
+               "sheared by a single fix deform that changes only the xy tilt (with remap v); fix "
+               "balance, which moves only the subdomain boundaries, is supported", f->id, f->style);
+  }
+  if (!domain->triclinic) return;
+#ifdef GRANFRIC_LIGGGHTS
+  error->all(FLERR, "Fix hardsphere/ed does not support triclinic boxes under LIGGGHTS");
+#endif
+  if (domain->xz != 0.0 || domain->yz != 0.0)
+    error->all(FLERR, "Fix hardsphere/ed supports triclinic boxes tilted in xy only (simple shear "
+               "in the x-y plane): xz = {} and yz = {} must be 0", domain->xz, domain->yz);
+  if (!domain->periodicity[0] || !domain->periodicity[1])
+    error->all(FLERR, "Fix hardsphere/ed: a triclinic (sheared) box must be periodic in x and y "
+               "(the sheared images lie across the y faces; walls go on z faces only)");
+  if (deform && !domain->deform_vremap)
+    error->all(FLERR, "Fix hardsphere/ed needs fix deform {} with remap v: an atom that crosses a "
+               "y face of the sheared box takes the velocity of the image it enters (remap x "
+               "would move the atoms with the box, remap none would break the flow at the "
+               "faces)", deform->id);
+  if (deform && domain->deform_groupbit != 1)
+    error->all(FLERR, "Fix hardsphere/ed needs fix deform {} to apply to group all (remap v "
+               "changes the velocity of every atom that crosses a y face)", deform->id);
+}
+
 // every box length at least the largest diameter (the cells of the core are that wide); the
 // error names an atom of that diameter
 void FixHardsphereED::check_box_fits_atoms() const

@@ -44,6 +44,10 @@ granfric::EDOptions HardsphereRunState::core_options() const
   o.gamma_bins = settings.gamma_bins;
   for (auto *w : walls) o.walls.push_back(w->wall());
   o.shape.assign(atom->ntypes + 1, pair->shape_factor());
+  // a triclinic box is sheared in xy (check_box_changes): Lees-Edwards images, moving at the
+  // tilt's rate when fix deform changes it
+  o.shear = domain->triclinic;
+  o.shear_rate = domain->triclinic ? domain->h_rate[5] : 0.0;
   return o;
 }
 

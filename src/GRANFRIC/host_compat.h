@@ -58,6 +58,11 @@ constexpr const char *GHOST_VELOCITY = "comm_modify vel yes";
 inline bool changes_box(const Fix *f) { return (f->box_change & ~Fix::BOX_CHANGE_DOMAIN) != 0; }
 // does fix f move the subdomains' boundaries during a run (fix balance)?
 inline bool moves_subdomains(const Fix *f) { return (f->box_change & Fix::BOX_CHANGE_DOMAIN) != 0; }
+// does fix f change the box's xy tilt and nothing else of it (fix deform xy: simple shear)?
+inline bool shears_xy_only(const Fix *f)
+{
+  return (f->box_change & ~Fix::BOX_CHANGE_DOMAIN) == Fix::BOX_CHANGE_XY;
+}
 // the command being run, and whether neigh_modify exclude removed pairs from the neighbour
 // lists
 inline const char *running_command(const Input *input) { return input->command; }
@@ -84,6 +89,8 @@ inline bool changes_box(const Fix *f)
   return f->box_change_size || f->box_change_shape;
 }
 inline bool moves_subdomains(const Fix *f) { return f->box_change_domain != 0; }
+// (sheared boxes are not supported under LIGGGHTS)
+inline bool shears_xy_only(const Fix *) { return false; }
 // (LIGGGHTS 3.8 has no rerun command; the exclusion counts are protected: the LIGGGHTS host
 // program reads them, see src/liggghts/granfric_liggghts.cpp)
 inline const char *running_command(const Input *) { return nullptr; }
