@@ -286,8 +286,11 @@ void FixHardsphereED::setup(int vflag)
 
 void FixHardsphereED::undo_rounding()
 {
+  // (after a restart file was written the next window starts from the atoms as the file holds
+  // them, as a run that reads it does: see resync_for_restart)
+  if (resync) return;
   if (run->atoms.stored())
-    run->atoms.undo_rounding();
+    run->atoms.undo_rounding(domain->triclinic, run->pbc_xy, run->view_xy, run->view_u);
   else
     gwin->undo_rounding();
 }
@@ -394,14 +397,17 @@ void FixHardsphereED::write_restart(FILE *fp)
   if (comm->me == 0) {
     // layout: -RESTART_FORMAT, the number of totals, the totals, the shell factor of domain
     // windows (which decides which copies a rank's window holds, and so its conflicts), the
-    // simulation time and its step (see restart)
+    // simulation time and its step (see restart), the anchor of a sheared box's images (set or
+    // not, tilt, time, rate: HardsphereRunState::ShearAnchor)
     const double head[2] = {-RESTART_FORMAT, (double) NVECTOR};
-    const double tail[3] = {dwin->reach_factor(), update->atime, (double) update->atimestep};
-    int size = (NVECTOR + 5) * sizeof(double);
+    const auto &a = run->shear;
+    const double tail[7] = {dwin->reach_factor(), update->atime, (double) update->atimestep,
+                            a.set ? 1.0 : 0.0, a.xy, a.t, a.rate};
+    int size = (NVECTOR + 9) * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
     fwrite(head, sizeof(double), 2, fp);
     fwrite(run->totals, sizeof(double), NVECTOR, fp);
-    fwrite(tail, sizeof(double), 3, fp);
+    fwrite(tail, sizeof(double), 7, fp);
   }
 }
 
@@ -426,6 +432,11 @@ void FixHardsphereED::restart(char *buf)
       update->atime = t;
       update->atimestep = step;
     }
+  }
+  // the line of a sheared box's images, as the writing run has it (fourth format on)
+  if (format >= 4.0) {
+    const double *a = d + 4 + nsaved;
+    run->shear = {a[0] != 0.0, a[1], a[2], a[3]};
   }
   // (the rebuild count continues too: the step after the file was written starts afresh in
   // the writing run as in this one, see resync_for_restart)

@@ -26,6 +26,7 @@ FixStyle(hardsphere/ed,FixHardsphereED);
 #ifndef LMP_GRANFRIC_FIX_HARDSPHERE_ED_H
 #define LMP_GRANFRIC_FIX_HARDSPHERE_ED_H
 
+#include "domain.h"
 #include "fix.h"
 
 #include "hardsphere_run_state.h"
@@ -45,7 +46,7 @@ class FixHardsphereED : public Fix {
   // the output vector (HardsphereRunState lists its entries)
   static constexpr int NVECTOR = HardsphereRunState::NVECTOR;
   enum { GATHER, DOMAIN };
-  static constexpr double RESTART_FORMAT = 3.0;    // (see write_restart)
+  static constexpr double RESTART_FORMAT = 4.0;    // (see write_restart)
 
   FixHardsphereED(class LAMMPS *, int, char **);
   // the fix hardsphere/ed with ID id, or an error in the name of who (a command and its style)
@@ -57,9 +58,10 @@ class FixHardsphereED : public Fix {
   void post_force_respa(int, int, int) override;
   void setup(int) override;
   void setup_pre_neighbor() override { undo_rounding(); }
+  // (a triclinic box rounds every position when LAMMPS reneighbors: see undo_rounding)
   void pre_neighbor() override
   {
-    if (balancing) undo_rounding();
+    if (balancing || domain->triclinic) undo_rounding();
   }
   void initial_integrate(int) override;
   void initial_integrate_respa(int, int, int) override;

@@ -244,14 +244,22 @@ void HardsphereAtomStates::note_positions(double now)
   written_at = NAN;
 }
 
-void HardsphereAtomStates::undo_rounding()
+void HardsphereAtomStates::undo_rounding(bool sheared, double pbc_xy, double xy, double u)
 {
   if (!xstate) return;
   const hardsphere::FarWrap wrap(domain);
+  const hardsphere::ShearWrap shear(domain, pbc_xy, xy, u);
   for (int i = 0; i < atom->nlocal; i++) {
     const double *wx = xstate[i] + XS_WX;
     double *x = atom->x[i];
     if (std::isnan(wx[0])) continue;
+    if (sheared) {
+      int k[3];
+      double c[3], *v = atom->v[i];
+      if (!std::isnan(xstate[i][XS_WV]) && shear.match(x, v[0], wx, xstate[i][XS_WV], k, c, v[0]))
+        std::memcpy(x, c, sizeof c);
+      continue;
+    }
     for (int d = 0; d < 3; d++) {
       int k;
       double c;

@@ -93,8 +93,12 @@ class HardsphereAtomStates : protected Pointers {
   // (or the balance command) began (note_positions at epoch time now, kept in XS_WX;
   // written_at then holds no time). So the positions a new epoch takes, and those of dumps
   // and restart files, are the serial run's bits.
+  // In a sheared box (triclinic, Lees-Edwards: sheared) LAMMPS rounds every position when it
+  // reneighbors, and an atom wrapped through a y face changes its x velocity by fix deform's
+  // rate: both are put back as written with the tilt xy and its rate u (hardsphere::ShearWrap;
+  // pbc_xy: the box's tilt when they were written)
   void note_positions(double now);
-  void undo_rounding();
+  void undo_rounding(bool sheared, double pbc_xy, double xy, double u);
 
  private:
   double **xstate = nullptr;    // (null unless stored)

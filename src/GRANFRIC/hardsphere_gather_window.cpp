@@ -44,6 +44,7 @@ void HardsphereGatherWindow::run(double t0, double dt, bool redo)
   const bool was_sheared = sheared;
   sheared = domain->triclinic;
   if (sheared != was_sheared) valid = false;
+  if (sheared) state.anchor_shear(t0);
   const bool epoch = !exact && (redo || state.epoch_starts() || !can_reuse(T0));
   if (epoch) state.begin_epoch(t0);    // (again after a domain window began it: the same)
   if (epoch || exact)
@@ -51,7 +52,6 @@ void HardsphereGatherWindow::run(double t0, double dt, bool redo)
   else
     state.check_overlaps = false;
   state.core_used_by(this);
-  if (sheared) check_shear_shift(state.window_start());
   const double T1 = state.window_end();
   schedule_kicks(t0, dt);
   advance(T1);
@@ -166,7 +166,7 @@ bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWra
   }
   double w[9];
   written_state(s, T0, w);
-  if (sheared) return reusable_sheared(s, bx, bv, bw, w, wrap);
+  if (sheared) return reusable_sheared(s, bx, bv, bw, w);
   for (int d = 0; d < 3; d++)
     if (bv[d] != w[3 + d] || bw[d] != w[6 + d]) return false;
   // positions: what this window wrote, or that shifted by one period by Domain::pbc()
@@ -179,47 +179,27 @@ bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWra
   return true;
 }
 
-// reusable() in a sheared box: y first, whose wrap by Domain::pbc() (k periods) moves x by
-// -k xy (up to the rounding of the box's fractional coordinates, through which LAMMPS takes
-// every position of a triclinic box) and the x velocity by -k times the tilt's rate (one
-// addition, as pbc() does it); then x, up to whole periods (wraps in x, and box flips)
+// reusable() in a sheared box: the atom as hardsphere::ShearWrap recognises it (the tilt and
+// the x velocity across the y faces, the rounding of a triclinic box's positions), its offsets
+// following the periods LAMMPS wrapped
 bool HardsphereGatherWindow::reusable_sheared(int s, const double *bx, const double *bv, const double *bw,
-                                              const double *w, const hardsphere::FarWrap &wrap)
+                                              const double *w)
 {
   for (int d = 0; d < 3; d++)
     if (bw[d] != w[6 + d]) return false;
   if (bv[1] != w[4] || bv[2] != w[5]) return false;
+  const hardsphere::ShearWrap wrap(domain, state.pbc_xy, state.view_xy, state.view_u);
+  int k[3];
+  double c[3], cvx;
+  if (!wrap.match(bx, bv[0], w, w[3], k, c, cvx)) return false;
   int8_t *stored = &offset[(size_t) s * noff];
-  int off[3] = {stored[0], stored[1], noff > 2 ? stored[2] : 0};
-  if (!wrap.holds(1, bx[1], w[1], off[1]) || !wrap.holds(2, bx[2], w[2], off[2])) return false;
-  const int k = off[1] - stored[1];
-  if (bv[0] != (k == 0 ? w[3] : k > 0 ? w[3] - shear_u : w[3] + shear_u)) return false;
-  const double x = k ? w[0] - k * shear_xy : w[0], n = std::round((x - bx[0]) / wper[0]);
-  const double tol = 64.0 * std::numeric_limits<double>::epsilon() *
-      (std::fabs(domain->boxlo[0]) + std::fabs(domain->boxhi[0]) + std::fabs(shear_xy));
-  if (!(std::fabs(x - n * wper[0] - bx[0]) <= tol) || std::fabs(n) > OFFSET_MAX) return false;
-  off[0] += (int) n;
+  int off[3];
   for (int d = 0; d < noff; d++) {
+    off[d] = stored[d] + k[d];
     if (off[d] < -OFFSET_MAX || off[d] > OFFSET_MAX) return false;
-    stored[d] = (int8_t) off[d];
   }
+  for (int d = 0; d < noff; d++) stored[d] = (int8_t) off[d];
   return true;
-}
-
-// The core's shear shift against the box's tilt: fix deform must change the tilt at the
-// constant rate the core took at the start of the epoch (styles final, delta, vel and erate;
-// box flips by whole periods are the same images)
-void HardsphereGatherWindow::check_shear_shift(double T0) const
-{
-  const double Lx = domain->prd[0];
-  double d = domain->xy - (ed.shear_shift() + ed.options().shear_rate * T0);
-  d -= std::round(d / Lx) * Lx;
-  if (std::fabs(d) > 1e-9 * Lx || domain->h_rate[5] != ed.options().shear_rate)
-    error->all(FLERR, "Fix hardsphere/ed: the box's xy tilt {} (rate {}) is not where the sheared "
-               "images are ({} at rate {}): fix deform must change xy at a constant rate (styles "
-               "final, delta, vel or erate, not trate, wiggle or variable)", domain->xy,
-               domain->h_rate[5], ed.shear_shift() + ed.options().shear_rate * T0,
-               ed.options().shear_rate);
 }
 
 // what this window writes for core particle s at window time t: position in LAMMPS's frame
@@ -230,8 +210,8 @@ void HardsphereGatherWindow::written_state(int s, double t, double *w) const
   ed.state(s, t, w, w + 3, w + 6);
   const int8_t *off = &offset[(size_t) s * noff];
   if (sheared && off[1]) {
-    w[0] -= off[1] * shear_xy;
-    w[3] -= off[1] * shear_u;
+    w[0] -= off[1] * state.view_xy;
+    w[3] -= off[1] * state.view_u;
   }
   for (int d = 0; d < noff; d++)
     if (off[d]) w[d] -= off[d] * wper[d];    // (not periodic: wper = 0 and off = 0)
@@ -243,7 +223,7 @@ void HardsphereGatherWindow::fresh_core(bool exact)
 {
   state.configure_core(state.core_options());
   // (sheared: the images' shift at epoch time 0, from the tilt now)
-  if (sheared) ed.set_shear_shift(domain->xy - ed.options().shear_rate * state.window_start());
+  if (sheared) ed.set_shear_shift(state.shear_shift_at(state.epoch_clock));
   ed.resize(ntotal);
   noff = domain->dimension;
   offset.assign((size_t) ntotal * noff, 0);
@@ -366,8 +346,12 @@ void HardsphereGatherWindow::take_back(double T1)
 {
   const int nlocal = atom->nlocal;
   const hardsphere::FarWrap wrap(domain);
-  shear_xy = domain->xy;
-  shear_u = domain->h_rate[5];
+  if (sheared) {    // (the anchored shift at the window's end, on the branch of the box's tilt)
+    const double xy = state.shear_shift_at(state.epoch_clock + T1);
+    state.view_xy = xy - std::round((xy - domain->xy) / domain->prd[0]) * domain->prd[0];
+    state.view_u = state.shear.rate;
+    state.pbc_xy = domain->xy;
+  }
   bool offsets_full = false;    // an offset left its range: the next window starts afresh
   const bool per_atom = state.atoms.per_atom() > 0;    // (read once)
   for (int s = 0; s < ntotal; s++) {
@@ -382,8 +366,8 @@ void HardsphereGatherWindow::take_back(double T1)
       const int d = sheared ? (m + 1) % noff : m;
       int off = stored[d];
       if (sheared && d == 0 && stored[1]) {
-        w[0] -= stored[1] * shear_xy;
-        w[3] -= stored[1] * shear_u;
+        w[0] -= stored[1] * state.view_xy;
+        w[3] -= stored[1] * state.view_u;
       }
       w[d] = wrap.written(d, w[d], off);
       dimg[d] = off - stored[d];
@@ -424,9 +408,17 @@ void HardsphereGatherWindow::undo_rounding()
   if (!same_atoms || (int) offset.size() != noff * ntotal) return;
   const double T = state.epoch_time(update->ntimestep);    // (the last window's end)
   const hardsphere::FarWrap wrap(domain);
+  const hardsphere::ShearWrap shear(domain, state.pbc_xy, state.view_xy, state.view_u);
   for (int s = 0; s < ntotal; s++) {
     double w[9], *x = atom->x[order[s]];
     written_state(s, T, w);
+    if (sheared) {
+      // (positions and the x velocity, both as written with the anchored tilt and rate)
+      int k[3];
+      double c[3], *v = atom->v[order[s]];
+      if (shear.match(x, v[0], w, w[3], k, c, v[0])) std::memcpy(x, c, sizeof c);
+      continue;
+    }
     for (int d = 0; d < 3; d++) {
       int k;
       double c;

@@ -87,13 +87,10 @@ class HardsphereGatherWindow : protected Pointers {
   int noff = 3;
   double wper[3] = {0, 0, 0};     // period per offset (0: not periodic)
   // A sheared box (Lees-Edwards): an atom whose y offset is k lies, in LAMMPS's frame, k times
-  // the tilt xy further in x and moves k times the tilt's rate faster in x (Domain::pbc() with
-  // fix deform remap v). The tilt and its rate as the last window wrote the atoms
+  // the tilt further in x and moves k times the tilt's rate slower in x (as written with
+  // HardsphereRunState::view_xy and view_u)
   bool sheared = false;
-  double shear_xy = 0.0, shear_u = 0.0;
-  bool reusable_sheared(int s, const double *bx, const double *bv, const double *bw, const double *w,
-                        const hardsphere::FarWrap &wrap);
-  void check_shear_shift(double T0) const;
+  bool reusable_sheared(int s, const double *bx, const double *bv, const double *bw, const double *w);
 
   // ---- scratch
   std::vector<double> sendbuf, recvbuf;

@@ -68,5 +68,39 @@ namespace hardsphere {
     }
   }
 
+  ShearWrap::ShearWrap(const Domain *domain, double pbc_xy, double xy, double u) :
+      wrap(domain), pbc_xy(pbc_xy), xy(xy), u(u), hrate(domain->h_rate[5]), Lx(domain->prd[0])
+  {
+    // (x goes through the fractional coordinates with the tilt's part of y)
+    tolx = 64.0 * std::numeric_limits<double>::epsilon() *
+        (std::fabs(domain->boxlo[0]) + std::fabs(domain->boxhi[0]) + std::fabs(pbc_xy) + std::fabs(xy));
+  }
+
+  // does b lie within the rounding of xs less n whole periods of x?
+  bool ShearWrap::near(double xs, double b, double &n) const
+  {
+    n = std::round((xs - b) / Lx);
+    return std::fabs(xs - n * Lx - b) <= tolx && std::fabs(n) <= 1e6;
+  }
+
+  bool ShearWrap::match(const double *b, double bvx, const double *w, double wvx, int *k, double *c,
+                        double &cvx) const
+  {
+    if (!wrap.match(1, b[1], w[1], k[1], c[1]) || !wrap.match(2, b[2], w[2], k[2], c[2])) return false;
+    // (the y wrap's x velocity: as pbc() changes it, or as match() gave it before)
+    const int ky = k[1];
+    const double vx = ky ? wvx - ky * u : wvx;
+    const double pbc = ky == 0 ? wvx : ky > 0 ? wvx - hrate : wvx + hrate;
+    if (bvx != vx && bvx != pbc) return false;
+    // (x wrapped by pbc() with the box's tilt, or as match() gave it before, with xy)
+    const double xs = ky ? w[0] - ky * xy : w[0];
+    double n;
+    if (!near(xs, b[0], n) && !(ky && near(w[0] - ky * pbc_xy, b[0], n))) return false;
+    k[0] = (int) n;
+    c[0] = n != 0.0 ? xs - n * Lx : xs;
+    cvx = vx;    // (last: bvx and cvx may be the same variable)
+    return true;
+  }
+
 }    // namespace hardsphere
 }    // namespace LAMMPS_NS

@@ -102,6 +102,29 @@ namespace hardsphere {
     bool periodic[3];
   };
 
+  // An atom of a sheared box (Lees-Edwards: triclinic, tilted in xy, periodic in x and y) as
+  // LAMMPS holds it against what a window wrote (w: x, y, z; wvx: the x velocity), written
+  // with the tilt xy and its rate u. LAMMPS takes every position of a triclinic box through
+  // its fractional coordinates when it reneighbors, which rounds it by a few units in the last
+  // place; Domain::pbc() wraps an atom that left through a y face by the lattice vector
+  // (pbc_xy, L_y), with the box's tilt pbc_xy of that step, and changes its x velocity by fix
+  // deform's rate hrate (remap v); a box flip moves it by whole periods of x. match() finds
+  // the periods k (k[1] through the y faces, k[0] of x, k[2] of z, as FarWrap::match counts
+  // them) and the exact values the atom stands for: c (3) and cvx, w wrapped so with xy and u
+  // (the same whether LAMMPS's values came from pbc() or were already these). False if the
+  // atom is none of them.
+  class ShearWrap {
+   public:
+    ShearWrap(const Domain *domain, double pbc_xy, double xy, double u);
+    bool match(const double *b, double bvx, const double *w, double wvx, int *k, double *c,
+               double &cvx) const;    // (c and cvx set only if true)
+
+   private:
+    FarWrap wrap;
+    double pbc_xy, xy, u, hrate, Lx, tolx;
+    bool near(double xs, double b, double &n) const;
+  };
+
   // the image flags of an atom that a window wrapped by dimg periods (most are not: inline
   // test)
   void wrap_image(imageint &image, const int *dimg);

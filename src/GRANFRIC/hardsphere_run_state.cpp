@@ -47,8 +47,31 @@ granfric::EDOptions HardsphereRunState::core_options() const
   // a triclinic box is sheared in xy (check_box_changes): Lees-Edwards images, moving at the
   // tilt's rate when fix deform changes it
   o.shear = domain->triclinic;
-  o.shear_rate = domain->triclinic ? domain->h_rate[5] : 0.0;
+  o.shear_rate = domain->triclinic ? shear_rate() : 0.0;
   return o;
+}
+
+double HardsphereRunState::shear_rate() const
+{
+  const double u = domain->h_rate[5];
+  return shear.set && std::fabs(u - shear.rate) <= 1e-12 * std::fabs(shear.rate) ? shear.rate : u;
+}
+
+void HardsphereRunState::anchor_shear(double t0)
+{
+  const double u = domain->h_rate[5], Lx = domain->prd[0];
+  if (shear.set) {
+    double d = domain->xy - shear_shift_at(t0);
+    d -= std::round(d / Lx) * Lx;
+    if (shear_rate() == shear.rate && std::fabs(d) <= 1e-9 * Lx) return;
+    if (update->ntimestep - 1 != update->beginstep)
+      error->all(FLERR, "Fix hardsphere/ed: the box's xy tilt {} (rate {}) left the line of the "
+                 "sheared images ({} at rate {}): fix deform must change xy at a constant rate "
+                 "(styles final, delta, vel or erate, not trate, wiggle or variable)", domain->xy,
+                 u, shear_shift_at(t0), shear.rate);
+  }
+  shear = {true, domain->xy, t0, u};
+  drop_core();    // (a new line: a new epoch)
 }
 
 std::vector<granfric::LawParams> HardsphereRunState::law_table() const

@@ -108,6 +108,27 @@ class HardsphereRunState : protected Pointers {
   double window_start() const;
   double window_end() const;
 
+  // ---- a sheared box (Lees-Edwards, check_box_changes): the images' shift as a line in
+  // absolute time, xy + rate (t - t_anchor), anchored at the first window of a sheared run and
+  // kept across runs and in restart files while fix deform goes on at the same rate (to 1e-12)
+  // and the tilt stays on the line (to 1e-9 of the box, up to box flips). So a run continued
+  // from a restart file takes the same shift and rate as the uninterrupted one, whatever the
+  // rounding of fix deform's own tilt, which it recomputes from its start at every run.
+  struct ShearAnchor {
+    bool set = false;
+    double xy = 0.0, t = 0.0, rate = 0.0;
+  } shear;
+  // at a window that starts at absolute time t0: the anchor checked, or set at the first
+  // window of a run (an error elsewhere: fix deform does not change xy at a constant rate)
+  void anchor_shear(double t0);
+  double shear_shift_at(double t) const { return shear.xy + shear.rate * (t - shear.t); }
+  double shear_rate() const;             // (the anchor's, or fix deform's before the first window)
+  // the tilt and its rate with which the last window wrote the atoms (an atom y periods off
+  // is written xy further in x and the rate faster in vx): the anchored shift at the window's
+  // end, on the branch of the box's tilt (flips); and the box's tilt then, with which
+  // Domain::pbc() wraps atoms later in that step (fix deform changes it at the step's end)
+  double view_xy = 0.0, view_u = 0.0, pbc_xy = 0.0;
+
   // ---- per atom
   HardsphereAtomStates atoms;
   // owned atom i as a window takes it: its stored state (exact) or LAMMPS's atom at the

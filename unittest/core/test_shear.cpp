@@ -68,6 +68,12 @@ TEST_P(Sheared, EqualsBruteForceReference)
   }
   EXPECT_LT(dx, 1e-9);
   EXPECT_LT(dv, 1e-9);
+  // no pair overlaps, across the sheared faces either
+  run.ed.set_shear_shift(ref.shift(T));
+  run.ed.start();
+  long ki, kj;
+  double depth;
+  EXPECT_EQ(run.ed.overlaps(1e-9, ki, kj, depth), 0) << "atoms " << ki << " and " << kj << " overlap by " << depth;
 }
 
 std::string shear_name(const ::testing::TestParamInfo<ShearCase> &info)
