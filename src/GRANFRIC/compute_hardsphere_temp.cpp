@@ -4,7 +4,8 @@
    GRANFRIC: compute hardsphere/temp. Temperatures per degree of freedom (doc/conventions.rst):
    2d: T_tr = E_tr/(N k_B), T_rot = 2 E_rot/(N k_B) (one spin dof, about z);
    3d: T_tr = 2 E_tr/(3 N k_B), T_rot = 2 E_rot/(3 N k_B). E_rot uses I = q m a^2 with q of the
-   hardsphere pair style (or the inertia keyword), not LAMMPS's fixed 2/5.
+   hardsphere pair style (or the inertia keyword), not LAMMPS's fixed 2/5. In a box sheared by
+   fix deform (remap v): of the motion relative to the flow (see sums()).
 ------------------------------------------------------------------------- */
 
 #include "compute_hardsphere_temp.h"
@@ -87,18 +88,44 @@ double ComputeHardsphereTemp::compute_scalar()
   return scalar;
 }
 
+// In a box that fix deform shears with remap v (fix hardsphere/ed's simple shear) the
+// temperatures are those of the peculiar motion: each atom's velocity less the streaming
+// velocity of the deforming box where it is (the box's rate of change times its fractional
+// coordinates, as compute temp/deform takes it off), and its spin less the group's mean spin
+// (which the shear's vorticity drives)
 void ComputeHardsphereTemp::sums(double *all)
 {
-  double **v = atom->v, **omega = atom->omega;
+  double **x = atom->x, **v = atom->v, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
   const int *mask = atom->mask;
   const bool dim2 = domain->dimension == 2;
-  double local[3] = {0.0, 0.0, 0.0};    // sum m v^2, sum I w^2, count
+  const bool peculiar = domain->deform_vremap;
+  double mean[4] = {0.0, 0.0, 0.0, 0.0};    // the group's mean spin, and its count
+  if (peculiar) {
+    double local[4] = {0.0, 0.0, 0.0, 0.0};
+    for (int i = 0; i < atom->nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      for (int d = 0; d < 3; d++) local[d] += omega[i][d];
+      local[3] += 1.0;
+    }
+    MPI_Allreduce(local, mean, 4, MPI_DOUBLE, MPI_SUM, world);
+    for (int d = 0; d < 3 && mean[3] > 0.0; d++) mean[d] /= mean[3];
+  }
+  const double *h = domain->h_rate, *hlo = domain->h_ratelo;
+  double local[3] = {0.0, 0.0, 0.0};    // sum m c^2, sum I (w - mean)^2, count
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    local[0] += rmass[i] * (v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
-    const double w2 = dim2 ? omega[i][2] * omega[i][2]
-                           : omega[i][0] * omega[i][0] + omega[i][1] * omega[i][1] + omega[i][2] * omega[i][2];
+    double c[3] = {v[i][0], v[i][1], v[i][2]}, w[3] = {omega[i][0], omega[i][1], omega[i][2]};
+    if (peculiar) {
+      double l[3];
+      domain->x2lamda(x[i], l);
+      c[0] -= h[0] * l[0] + h[5] * l[1] + h[4] * l[2] + hlo[0];
+      c[1] -= h[1] * l[1] + h[3] * l[2] + hlo[1];
+      c[2] -= h[2] * l[2] + hlo[2];
+      for (int d = 0; d < 3; d++) w[d] -= mean[d];
+    }
+    local[0] += rmass[i] * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    const double w2 = dim2 ? w[2] * w[2] : w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
     local[1] += qused * rmass[i] * radius[i] * radius[i] * w2;
     local[2] += 1.0;
   }

@@ -394,6 +394,15 @@ void FixHardsphereED::write_restart(FILE *fp)
   // the window start times, and with them kick and wall times, with the same rounding.
   resync = true;
   update->update_time();
+  // A sheared box's atoms into the box first, as Domain::pbc() wraps them (with remap v): a run
+  // that reads the file remaps positions into the box but leaves velocities as they are, which
+  // for an atom outside in y would keep its image's velocity. (The file is written before the
+  // atoms are packed; the write_restart command itself does the same before.)
+  if (domain->triclinic && domain->deform_vremap) {
+    domain->x2lamda(atom->nlocal);
+    domain->pbc();
+    domain->lamda2x(atom->nlocal);
+  }
   if (comm->me == 0) {
     // layout: -RESTART_FORMAT, the number of totals, the totals, the shell factor of domain
     // windows (which decides which copies a rank's window holds, and so its conflicts), the

@@ -82,17 +82,19 @@ void FixHardsphereED::check_scales() const
   const double vwall = std::max(2.0 * wmax, tmax > 0.0 ? 5.0 * std::sqrt(tmax * mx[2]) : 0.0);
   double vkick = 0.0;
   for (auto *k : run->kicks) vkick += k->speed_scale(dt, domain->dimension);
-  const double mean = (sum / n + vwall + vkick) * dt + 0.5 * g * dt * dt;    // per atom and step
+  // (the images across a sheared box's y faces move at the tilt's rate, which drives the flow)
+  const double vshear = domain->triclinic ? std::fabs(domain->h_rate[5]) : 0.0;
+  const double mean = (sum / n + vwall + vkick + vshear) * dt + 0.5 * g * dt * dt;    // per atom and step
   if (!(mean / (2.0 * mx[1]) <= (double) maxevents))
     error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
                "average (mean speed {:.3g}, {:.3g} from moving or thermal walls, {:.3g} from kicks, "
-               "gravity {:.3g}, timestep {:.3g}), more cells than the event cap maxevents = {} "
-               "allows each atom in a step: lower the speeds, the walls' speed or temperature, the "
-               "kicks' v_dr, gravity or the timestep", mean / (2.0 * mx[1]), sum / n, vwall, vkick,
-               g, dt, maxevents);
+               "{:.3g} from the shear, gravity {:.3g}, timestep {:.3g}), more cells than the event "
+               "cap maxevents = {} allows each atom in a step: lower the speeds, the walls' speed or "
+               "temperature, the kicks' v_dr, the shear rate, gravity or the timestep",
+               mean / (2.0 * mx[1]), sum / n, vwall, vkick, vshear, g, dt, maxevents);
   // (a contact time takes squares of distances and speeds, and of their products)
   const double L = std::max({domain->prd[0], domain->prd[1], domain->dimension == 3 ? domain->prd[2] : 0.0});
-  const double vtop = mx[3] + vwall + vkick + g * dt;
+  const double vtop = mx[3] + vwall + vkick + vshear + g * dt;
   if (!(L * vtop < 1e150 && L < 1e150))
     error->all(FLERR, "Fix hardsphere/ed: the box length {:.3g} times the largest speed {:.3g} (of "
                "the atoms, walls, kicks and gravity in a step) is {:.3g}, beyond 1e150: the squares "

@@ -87,11 +87,13 @@ namespace hardsphere {
                         double &cvx) const
   {
     if (!wrap.match(1, b[1], w[1], k[1], c[1]) || !wrap.match(2, b[2], w[2], k[2], c[2])) return false;
-    // (the y wrap's x velocity: as pbc() changes it, or as match() gave it before)
+    // (the y wrap's x velocity: as pbc() changes it, as match() gave it before, or unchanged:
+    // Domain::remap(), which wraps every atom into the box when fix deform flips it, leaves
+    // the velocities as they are)
     const int ky = k[1];
     const double vx = ky ? wvx - ky * u : wvx;
     const double pbc = ky == 0 ? wvx : ky > 0 ? wvx - hrate : wvx + hrate;
-    if (bvx != vx && bvx != pbc) return false;
+    if (bvx != vx && bvx != pbc && bvx != wvx) return false;
     // (x wrapped by pbc() with the box's tilt, or as match() gave it before, with xy)
     const double xs = ky ? w[0] - ky * xy : w[0];
     double n;

@@ -108,7 +108,8 @@ namespace hardsphere {
   // its fractional coordinates when it reneighbors, which rounds it by a few units in the last
   // place; Domain::pbc() wraps an atom that left through a y face by the lattice vector
   // (pbc_xy, L_y), with the box's tilt pbc_xy of that step, and changes its x velocity by fix
-  // deform's rate hrate (remap v); a box flip moves it by whole periods of x. match() finds
+  // deform's rate hrate (remap v); a box flip moves it by whole periods of x, and wraps it
+  // through a y face without changing its velocity (Domain::remap()). match() finds
   // the periods k (k[1] through the y faces, k[0] of x, k[2] of z, as FarWrap::match counts
   // them) and the exact values the atom stands for: c (3) and cvx, w wrapped so with xy and u
   // (the same whether LAMMPS's values came from pbc() or were already these). False if the

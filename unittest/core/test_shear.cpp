@@ -160,10 +160,23 @@ TEST(Shear, ElasticGasHeats)
     return e;
   };
   for (auto &a : ref.p) a.v.x += ref.shear_rate * (a.x.y - ref.lo.y) / ref.L.y;    // (the profile at the start)
+  // (the x momentum relative to the profile is conserved: a particle's stored velocity less
+  // the profile at its unwrapped position is the same in every image)
+  auto drift = [&](const CoreRun &r) {
+    double p = 0.0;
+    for (int i = 0; i < r.ed.size(); i++) {
+      const auto q = r.ed.particle(i);
+      p += q.m * (q.v.x - ref.shear_rate * (q.x.y - ref.lo.y) / ref.L.y);
+    }
+    return p;
+  };
   CoreRun run(ref);
-  const double e0 = peculiar(run), mft = mean_free_time(ref);
+  const double e0 = peculiar(run), p0 = drift(run), mft = mean_free_time(ref);
   run.run(20 * mft, 2 * mft);
   EXPECT_GT(peculiar(run), 1.2 * e0);
+  double py = 0.0;    // (less the profile's change along the y momentum's path)
+  for (const auto &q : ref.p) py += q.m * q.v.y;
+  EXPECT_NEAR(drift(run), p0 - ref.shear_rate / ref.L.y * py * run.time, 1e-9 * std::sqrt(e0 * ref.p.size()));
   EXPECT_NEAR(run.total.dE, 0.0, 1e-9 * e0);
 }
 

@@ -39,6 +39,8 @@ def to_liggghts(text):
 
 def run_entry(entry, setups, work):
     """(name, outcome, detail): outcome 'ok', 'fail' or 'n/a'"""
+    if entry.get("host", "liggghts") != "liggghts":
+        return entry["name"], "n/a", "an entry for LAMMPS only"
     lines = [ln for ln in to_liggghts(setups[entry["setup"]] + "\n" + entry["input"]).split("\n") if ln.strip()]
     script = os.path.join(work, entry["name"] + ".in")
     with open(script, "w") as f:

@@ -143,7 +143,23 @@ def test_domain_windows_equal_serial_bit_for_bit(tmp_path, scene):
         assert redone > 0, "no conflict was repaired"
 
 
-@pytest.mark.parametrize("scene", ["driven", "vibrated"])
+def test_sheared_box_equal_serial_bit_for_bit(tmp_path):
+    """Simple shear (fix deform xy erate, remap v) over 100 and more collisions per particle
+    and several box flips: 2, 3 and 4 ranks give the serial state bit for bit (the windows
+    of a sheared box are gathered on every rank)"""
+    w = str(tmp_path)
+    lmp(w, 1, scene="shear", steps=0, out="s0", restart_out="init")
+    var = dict(scene="shear", restart_in="init", steps=700)
+    lmp(w, 1, out="s1", log="log1", **var)
+    d = lammpslog.read_thermo(os.path.join(w, "log1"))
+    assert 2.0 * d["f_ed[2]"][-1] / len(state(os.path.join(w, "s1"))) >= 100, "fewer than 100 collisions per particle"
+    for n in (2, 3, 4):
+        lmp(w, n, out=f"s{n}", **var)
+        differ = identical(w, "s1", f"s{n}")
+        assert not differ, f"{n} ranks: {len(differ)} atoms differ, the first IDs {differ[:5]}"
+
+
+@pytest.mark.parametrize("scene", ["driven", "vibrated", "shear"])
 def test_restarted_on_other_rank_counts_equals_serial_bit_for_bit(tmp_path, scene):
     """A serial run that writes a restart file at step 60 (it then starts a new epoch from the
     atoms, as a run read from the file does), continued from that file on 3 ranks: the serial
