@@ -23,6 +23,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <string>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -85,13 +87,16 @@ void FixHardsphereED::check_scales() const
   // (the images across a sheared box's y faces move at the tilt's rate, which drives the flow)
   const double vshear = domain->triclinic ? std::fabs(domain->h_rate[5]) : 0.0;
   const double mean = (sum / n + vwall + vkick + vshear) * dt + 0.5 * g * dt * dt;    // per atom and step
+  // (the shear named only in a sheared box)
+  const std::string shear = vshear > 0.0 ? host::format("{:.3g} from the shear, ", vshear) : "";
+  const std::string rate = vshear > 0.0 ? "the shear rate (fix deform's erate or vel), " : "";
   if (!(mean / (2.0 * mx[1]) <= (double) maxevents))
     error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
                "average (mean speed {:.3g}, {:.3g} from moving or thermal walls, {:.3g} from kicks, "
-               "{:.3g} from the shear, gravity {:.3g}, timestep {:.3g}), more cells than the event "
-               "cap maxevents = {} allows each atom in a step: lower the speeds, the walls' speed or "
-               "temperature, the kicks' v_dr, the shear rate, gravity or the timestep",
-               mean / (2.0 * mx[1]), sum / n, vwall, vkick, vshear, g, dt, maxevents);
+               "{}gravity {:.3g}, timestep {:.3g}), more cells than the event cap maxevents = {} "
+               "allows each atom in a step: lower the speeds, the walls' speed or temperature, the "
+               "kicks' v_dr, {}gravity or the timestep", mean / (2.0 * mx[1]), sum / n, vwall, vkick,
+               shear, g, dt, maxevents, rate);
   // (a contact time takes squares of distances and speeds, and of their products)
   const double L = std::max({domain->prd[0], domain->prd[1], domain->dimension == 3 ? domain->prd[2] : 0.0});
   const double vtop = mx[3] + vwall + vkick + vshear + g * dt;
@@ -175,6 +180,14 @@ void FixHardsphereED::check_plane()
   plane_checked = atom->natoms;
   if (domain->dimension != 2) return;
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
+  // (a triclinic box takes positions through its fractional coordinates, which can leave z a
+  // few units in the last place of the box's z extent off 0: put back in the plane)
+  if (domain->triclinic) {
+    const double tol = 16.0 * std::numeric_limits<double>::epsilon() *
+        (std::fabs(domain->boxlo[2]) + std::fabs(domain->boxhi[2]));
+    for (int i = 0; i < atom->nlocal; i++)
+      if (std::fabs(x[i][2]) <= tol) x[i][2] = 0.0;
+  }
   const tagint who = first_atom([&](int i) {
     return x[i][2] != 0.0 || v[i][2] != 0.0 || omega[i][0] != 0.0 || omega[i][1] != 0.0;
   });
@@ -237,7 +250,8 @@ void FixHardsphereED::check_box_changes()
                "in the x-y plane): xz = {} and yz = {} must be 0", domain->xz, domain->yz);
   if (!domain->periodicity[0] || !domain->periodicity[1])
     error->all(FLERR, "Fix hardsphere/ed: a triclinic (sheared) box must be periodic in x and y "
-               "(the sheared images lie across the y faces; walls go on z faces only)");
+               "(boundary p p p, or p p f with walls on the z faces): the sheared images lie "
+               "across the y faces");
   if (deform && !domain->deform_vremap)
     error->all(FLERR, "Fix hardsphere/ed needs fix deform {} with remap v: an atom that crosses a "
                "y face of the sheared box takes the velocity of the image it enters (remap x "

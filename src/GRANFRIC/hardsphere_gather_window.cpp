@@ -369,7 +369,8 @@ void HardsphereGatherWindow::take_back(double T1)
         w[0] -= stored[1] * state.view_xy;
         w[3] -= stored[1] * state.view_u;
       }
-      w[d] = wrap.written(d, w[d], off);
+      const double tilt = sheared && d == 0 ? (w[1] - domain->boxlo[1]) * (domain->xy / domain->prd[1]) : 0.0;
+      w[d] = wrap.written(d, w[d], off, tilt);
       dimg[d] = off - stored[d];
       if (off < -OFFSET_MAX || off > OFFSET_MAX) offsets_full = true;
       stored[d] = (int8_t) std::max(-OFFSET_MAX, std::min(OFFSET_MAX, off));

@@ -54,11 +54,13 @@ namespace hardsphere {
     // The core keeps positions unwrapped (its frame); LAMMPS's lie off periods lower. What a
     // window writes for core coordinate xc of dimension d: xc - off L, and a far one wrapped
     // further (off follows: the periods taken off are off after the call less off before)
-    double written(int d, double xc, int &off) const
+    // (shift: in a sheared box, the tilt's part of x at the atom's height, (y - ylo) xy / L_y,
+    // which the box's x extent has there)
+    double written(int d, double xc, int &off, double shift = 0.0) const
     {
       if (!periodic[d]) return xc;
       double y = off ? xc - off * L[d] : xc;
-      const int k = periods(d, y);
+      const int k = periods(d, y - shift);
       if (k) {
         off += k;
         y = off ? xc - off * L[d] : xc;

@@ -4,6 +4,8 @@
 
     /usr/bin/python3 tools/granfric reproduce herbst2005|luding1998|risso2005 [--quick|--full] [--out DIR]
     /usr/bin/python3 tools/granfric collisions [--out DIR]
+    /usr/bin/python3 tools/granfric shear [--quick|--full] [--out DIR]
+    /usr/bin/python3 tools/granfric usf [--quick|--full] [--out DIR]
     /usr/bin/python3 tools/granfric convection --kappas K1 K2 ... [--q Q] [--g G] [--periods P]
 (the same as PYTHONPATH=tools /usr/bin/python3 -m granfric ..., or tools/reproduce PAPER)
 
@@ -37,7 +39,7 @@ def main(argv=None):
         print("reproduce PAPER [--quick|--full] [--out DIR]: the figures and report of one paper "
               "(" + ", ".join(PAPERS) + "); PAPER --help lists its options")
         return 0
-    if argv and argv[0] in ("reproduce", "convection", "collisions"):
+    if argv and argv[0] in ("reproduce", "convection", "collisions", "shear", "usf"):
         from .cli import require_deps
         if require_deps():
             return 2
@@ -61,6 +63,10 @@ def main(argv=None):
     if argv and argv[0] == "collisions":
         from . import collision_demo
         return collision_demo.main(argv[1:])
+    if argv and argv[0] in ("shear", "usf"):
+        from . import shear, usf
+        rest = argv[1:] + ([] if "--out" in argv else ["--out", f"out/{argv[0]}"])
+        return (shear if argv[0] == "shear" else usf).main(rest)
     sys.stderr.write((f"unknown command {argv[0]}\n\n" if argv else "") + __doc__ + "\n")
     return 2
 
