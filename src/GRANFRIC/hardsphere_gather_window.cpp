@@ -137,16 +137,18 @@ bool HardsphereGatherWindow::can_reuse(double T0)
   bool reuse = valid && state.core_kept_by(this) && ed.size() == ntotal && same_atoms && noff == domain->dimension &&
       (int) offset.size() == noff * ntotal;
   const hardsphere::FarWrap wrap(domain);
+  const hardsphere::ShearWrap shear(domain, state.pbc_xy, state.view_xy, state.view_u);
   for (int s = 0; reuse && s < ntotal; s++) {
     if (s + AHEAD < ntotal) ed.prefetch_particle(s + AHEAD);
-    reuse = reusable(s, T0, wrap);
+    reuse = reusable(s, T0, wrap, shear);
   }
   return reuse;
 }
 
 // does core particle s hold this window's atom (its position up to the periods LAMMPS wrapped,
 // which update its offsets)?
-bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWrap &wrap)
+bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWrap &wrap,
+                                      const hardsphere::ShearWrap &shear)
 {
   const int k = order[s];
   // this window's x, v, omega of the atom (in place on one rank)
@@ -166,7 +168,7 @@ bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWra
   }
   double w[9];
   written_state(s, T0, w);
-  if (sheared) return reusable_sheared(s, bx, bv, bw, w);
+  if (sheared) return reusable_sheared(s, bx, bv, bw, w, shear);
   for (int d = 0; d < 3; d++)
     if (bv[d] != w[3 + d] || bw[d] != w[6 + d]) return false;
   // positions: what this window wrote, or that shifted by one period by Domain::pbc()
@@ -183,12 +185,11 @@ bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWra
 // the x velocity across the y faces, the rounding of a triclinic box's positions), its offsets
 // following the periods LAMMPS wrapped
 bool HardsphereGatherWindow::reusable_sheared(int s, const double *bx, const double *bv, const double *bw,
-                                              const double *w)
+                                              const double *w, const hardsphere::ShearWrap &wrap)
 {
   for (int d = 0; d < 3; d++)
     if (bw[d] != w[6 + d]) return false;
   if (bv[1] != w[4] || bv[2] != w[5]) return false;
-  const hardsphere::ShearWrap wrap(domain, state.pbc_xy, state.view_xy, state.view_u);
   int k[3];
   double c[3], cvx;
   if (!wrap.match(bx, bv[0], w, w[3], k, c, cvx)) return false;

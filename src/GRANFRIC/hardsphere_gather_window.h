@@ -29,6 +29,7 @@ namespace LAMMPS_NS {
 class HardsphereRunState;
 namespace hardsphere {
   class FarWrap;
+  class ShearWrap;
 }
 
 class HardsphereGatherWindow : protected Pointers {
@@ -61,7 +62,7 @@ class HardsphereGatherWindow : protected Pointers {
 
   // ---- helpers of the stages
   AtomRecord record(int k) const;    // atom k of the gathered system
-  bool reusable(int s, double T0, const hardsphere::FarWrap &wrap);
+  bool reusable(int s, double T0, const hardsphere::FarWrap &wrap, const hardsphere::ShearWrap &shear);
   void written_state(int s, double t, double *w) const;
   void keep_atom(int i, int s, const int8_t *stored, const double *w);
   std::string endless_collisions() const;
@@ -90,7 +91,8 @@ class HardsphereGatherWindow : protected Pointers {
   // the tilt further in x and moves k times the tilt's rate slower in x (as written with
   // HardsphereRunState::view_xy and view_u)
   bool sheared = false;
-  bool reusable_sheared(int s, const double *bx, const double *bv, const double *bw, const double *w);
+  bool reusable_sheared(int s, const double *bx, const double *bv, const double *bw, const double *w,
+                        const hardsphere::ShearWrap &wrap);
 
   // ---- scratch
   std::vector<double> sendbuf, recvbuf;

@@ -34,6 +34,7 @@ SHORT = [
     ("compaction", "in.compaction", "compaction", {"tend": 4000}),
     ("convection", "in.convection", "convection", {"periods": 1000}),
     ("shear", "in.shear2d", "shear2d", {"nside": 32, "trelax": 200, "tavg": 800}),
+    ("shear", "in.shear3d", "shear3d", {"nside": 10, "trelax": 200, "tavg": 800}),
 ]
 RANKS = (1, 2)
 
@@ -57,6 +58,8 @@ TOL = {
     "convection": {"c_psi[1]": None, "c_psi[2]": None, "v_ycm": 0.3, "c_T[1]": 0.3,
                    "c_T[2]": 0.5, "f_ed[2]": 0.2, "f_ed[10]": 0.05, "f_ed[7]": None},
     "shear2d": {"c_T[1]": 0.5, "c_T[2]": 0.5, "c_T[3]": None, "v_pxx": 0.3, "v_pyy": 0.5,
+                "v_pxy": None, "f_ed[2]": 0.05},
+    "shear3d": {"c_T[1]": 0.5, "c_T[2]": 0.5, "c_T[3]": 0.3, "v_pxx": 0.5, "v_pyy": 0.5,
                 "v_pxy": None, "f_ed[2]": 0.05},
 }
 EXACT = 1e-10     # the first row of the run: the initial state, no dynamics yet

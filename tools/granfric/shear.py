@@ -20,7 +20,8 @@ import numpy as np
 
 from . import cli, cooling, lammpslog, lmp, usf
 
-EXAMPLE = os.path.join(lmp.ROOT, "examples", "shear", "in.shear2d")
+EXAMPLES = {2: os.path.join(lmp.ROOT, "examples", "shear", "in.shear2d"),
+            3: os.path.join(lmp.ROOT, "examples", "shear", "in.shear3d")}
 LAW, COEFFS, RATE = "rough", (0.9, 0.0), 0.05
 STEADY = re.compile(r"^steady: (.*)$")
 
@@ -36,7 +37,7 @@ def steady(log):
     raise ValueError("no steady state line in " + log)
 
 
-def reduced(s, dim=2):
+def reduced(s, dim):
     """a*, P*_xx, P*_yy, P*_xy, R and collisions / nu of a steady state (the example's, or the
     DSMC's in the same form)"""
     T, n = s["T_tr"], s["n"]
@@ -45,17 +46,17 @@ def reduced(s, dim=2):
             "P*xy": s["Pxy"] / (n * T), "R": s["T_rot"] / T, "coll/nu": s["coll"] / nu}
 
 
-def theory(phi, N, runs):
-    m, se = usf.steady(LAW, COEFFS, 2, phi, RATE, runs=runs, N=N, t_relax=400.0, t_avg=600.0,
-                       T0=(RATE / 0.5 / cooling.collision_frequency(1.0, phi, 0.5, 1.0, 2)) ** 2)
+def theory(dim, phi, N, runs):
+    m, se = usf.steady(LAW, COEFFS, dim, phi, RATE, runs=runs, N=N, t_relax=400.0, t_avg=600.0,
+                       T0=(RATE / 0.5 / cooling.collision_frequency(1.0, phi, 0.5, 1.0, dim)) ** 2)
     s = {"T_tr": m["Ttr"], "T_rot": m["Trot"], "Pxx": m["P"][0, 0], "Pyy": m["P"][1, 1],
          "Pxy": m["P"][0, 1], "coll": m["coll_rate"], "n": m["n"], "rate": RATE, "phi": phi}
-    return reduced(s), m, se
+    return reduced(s, dim), m, se
 
 
-def run_example(work, phi, nside, tavg, seed=4321):
-    log = os.path.join(work, f"log.phi{phi}.n{nside}.s{seed}")
-    lmp.run(EXAMPLE, {"phi": phi, "nside": nside, "tavg": tavg, "seed": seed}, cwd=work, log=log)
+def run_example(work, dim, phi, nside, tavg, seed=4321):
+    log = os.path.join(work, f"log.{dim}d.phi{phi}.n{nside}.s{seed}")
+    lmp.run(EXAMPLES[dim], {"phi": phi, "nside": nside, "tavg": tavg, "seed": seed}, cwd=work, log=log)
     return log
 
 
@@ -64,40 +65,41 @@ KEYS = ("T_tr", "a*", "P*xx", "P*yy", "P*xy", "R", "coll/nu")
 
 def main(argv=None):
     a = cli.scene_args(argv, __doc__, "out/shear",
-                       "phi 0.01 and 0.05 at N = 1024, sizes N = 64 to 4096; DSMC N = 20000 x 2",
-                       "sizes up to N = 16384, three seeds at N = 1024; DSMC N = 40000 x 4")
+                       "2D phi 0.01 and 0.05 at N = 1024, 3D phi 0.05 at N = 1728, 2D sizes N = 64 "
+                       "to 4096; DSMC N = 20000 x 2",
+                       "sizes up to N = 16384, three seeds per case; DSMC N = 40000 x 4")
     os.makedirs(a.out, exist_ok=True)
     work = cli.logs_dir(a.out)
     sizes = [8, 16, 32, 64, 128] if a.full else [8, 16, 32, 64]
     seeds = [4321, 777, 99] if a.full else [4321]
     dN, runs = (40000, 4) if a.full else (20000, 2)
-    cases = [(0.01, 32), (0.05, 32)]
+    cases = [(2, 0.01, 32), (2, 0.05, 32), (3, 0.05, 12)]
     lines = ["# Simple shear: event-driven runs against the kinetic theory", "",
              f"Rough discs r = {COEFFS[0]}, beta = {COEFFS[1]}, shear rate a = {RATE}; DSMC of the "
              f"Enskog-Boltzmann equation with N = {dN} x {runs} runs. a* = a/nu(T_tr), P* = P/(n T_tr).",
-             "", "## The dilute gas (N = 1024)", "",
-             "| phi | source | " + " | ".join(KEYS) + " |", "|---|---|" + "---|" * len(KEYS)]
+             "", "## The dilute gas (2D: N = 1024 discs; 3D: N = 1728 spheres)", "",
+             "| dim | phi | source | " + " | ".join(KEYS) + " |", "|---|---|---|" + "---|" * len(KEYS)]
     theories = {}
-    for phi, nside in cli.progress(cases, "phi cases"):
-        th = theories[phi] = theory(phi, dN, runs)[0]
-        eds = [reduced(steady(run_example(work, phi, nside, 10000.0, seed))) for seed in seeds]
+    for dim, phi, nside in cli.progress(cases, "cases"):
+        th = theories[(dim, phi)] = theory(dim, phi, dN, runs)[0]
+        eds = [reduced(steady(run_example(work, dim, phi, nside, 10000.0, seed)), dim) for seed in seeds]
         ed = {k: float(np.mean([e[k] for e in eds])) for k in KEYS}
-        lines.append(f"| {phi} | DSMC | " + " | ".join(f"{th[k]:.4g}" for k in KEYS) + " |")
-        lines.append(f"| {phi} | ED | " + " | ".join(f"{ed[k]:.4g}" for k in KEYS) + " |")
-        lines.append(f"| {phi} | ED/DSMC - 1 | " + " | ".join(f"{100 * (ed[k] / th[k] - 1):+.1f} %" for k in KEYS) + " |")
-    th = theories[0.05]
-    lines += ["", "## The box size (phi = 0.05)", "", "| N | L / mean free path | " + " | ".join(
+        lines.append(f"| {dim} | {phi} | DSMC | " + " | ".join(f"{th[k]:.4g}" for k in KEYS) + " |")
+        lines.append(f"| {dim} | {phi} | ED | " + " | ".join(f"{ed[k]:.4g}" for k in KEYS) + " |")
+        lines.append(f"| {dim} | {phi} | ED/DSMC - 1 | " + " | ".join(f"{100 * (ed[k] / th[k] - 1):+.1f} %" for k in KEYS) + " |")
+    th = theories[(2, 0.05)]
+    lines += ["", "## The box size (2D, phi = 0.05)", "", "| N | L / mean free path | " + " | ".join(
         f"{k}/DSMC" for k in KEYS) + " |", "|---|---|" + "---|" * len(KEYS)]
     mfp = 1.0 / (2.0 * np.sqrt(2.0) * (0.05 / (np.pi * 0.25)) * cooling.pair_correlation(0.05, 2))
     rows = []
     for nside in cli.progress(sizes, "box sizes"):
-        s = reduced(steady(run_example(work, 0.05, nside, max(1000.0, 320000.0 / nside), 4321)))
+        s = reduced(steady(run_example(work, 2, 0.05, nside, max(1000.0, 320000.0 / nside), 4321)), 2)
         L = nside * np.sqrt(np.pi * 0.25 / 0.05)
         rows.append((nside * nside, L / mfp, s))
         lines.append(f"| {nside * nside} | {L / mfp:.1f} | " + " | ".join(f"{s[k] / th[k]:.3f}" for k in KEYS) + " |")
     with open(os.path.join(a.out, "report.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
-    plot(os.path.join(work, "log.phi0.05.n32.s4321"), th, rows, os.path.join(a.out, "shear.png"))
+    plot(os.path.join(work, "log.2d.phi0.05.n32.s4321"), th, rows, os.path.join(a.out, "shear.png"))
     print("\n".join(lines))
 
 

@@ -53,7 +53,7 @@ def run(law, coeffs, dim, phi, shear, t_relax, t_avg, N=20000, q=None, a=0.5, m=
         eps=None, T0=1.0):
     """Steady USF at shear rate `shear` from a Maxwellian at T0 (no spin): relaxation for
     t_relax, then averages over t_avg. Returns a dict: Ttr, Trot, R, P (3x3, pressure tensor),
-    Pk (its kinetic part), a_star, P_star (P / (n T_tr)), nu (collision frequency of cooling.py at
+    Pk (its kinetic part), dissipation (energy lost in collisions per volume and time), a_star, P_star (P / (n T_tr)), nu (collision frequency of cooling.py at
     the mean T_tr), coll_rate (measured collisions per particle and unit time), and the series
     (t, Ttr) of the whole run."""
     q = dsmc.SHAPE[dim] if q is None else q
@@ -74,7 +74,7 @@ def run(law, coeffs, dim, phi, shear, t_relax, t_avg, N=20000, q=None, a=0.5, m=
     rate_const = (N - 1) / N * n_dens * g2 * sigma ** (dim - 1) * solid    # P_c = rate_const G_max dt
     volume = N / n_dens
     t, t_end = 0.0, t_relax + t_avg
-    ncoll, vir = 0, np.zeros((3, 3))
+    ncoll, vir, lost = 0, np.zeros((3, 3)), 0.0
     acc_T = acc_R = acc_time = 0.0
     acc_K = np.zeros((3, 3))
     series = []
@@ -113,9 +113,11 @@ def run(law, coeffs, dim, phi, shear, t_relax, t_avg, N=20000, q=None, a=0.5, m=
         v1, w1, v2, w2 = v[i], w[i], v[j], w[j]
         v1[:, 0] += shift
         before = v1.copy()
-        core.collide_batch(law, coeffs, v1, w1, v2, w2, np.ascontiguousarray(nrm), m=m, a=a, q=q)
+        dE = core.collide_batch(law, coeffs, v1, w1, v2, w2, np.ascontiguousarray(nrm), m=m, a=a, q=q,
+                                want_dE=True)
         if averaging:
             vir += np.einsum("ni,nj->ij", sigma * nrm, m * (v1 - before))
+            lost -= dE.sum()
         v1[:, 0] -= shift
         v[i], w[i], v[j], w[j] = v1, w1, v2, w2
         if averaging:
@@ -126,6 +128,7 @@ def run(law, coeffs, dim, phi, shear, t_relax, t_avg, N=20000, q=None, a=0.5, m=
     P = Pk + vir / (volume * acc_time)
     nu = cooling.collision_frequency(Ttr, phi, a, m, dim)
     return {"Ttr": Ttr, "Trot": Trot, "R": Trot / Ttr, "P": P, "Pk": Pk, "nu": nu,
+            "dissipation": lost / (volume * acc_time),
             "a_star": shear / nu, "P_star": P / (n_dens * Ttr), "coll_rate": 2.0 * ncoll / (N * acc_time),
             "n": n_dens, "series": np.array(series)}
 

@@ -149,7 +149,7 @@ def test_sheared_box_equal_serial_bit_for_bit(tmp_path):
     of a sheared box are gathered on every rank)"""
     w = str(tmp_path)
     lmp(w, 1, scene="shear", steps=0, out="s0", restart_out="init")
-    var = dict(scene="shear", restart_in="init", steps=700)
+    var = dict(scene="shear", restart_in="init", steps=800)
     lmp(w, 1, out="s1", log="log1", **var)
     d = lammpslog.read_thermo(os.path.join(w, "log1"))
     assert 2.0 * d["f_ed[2]"][-1] / len(state(os.path.join(w, "s1"))) >= 100, "fewer than 100 collisions per particle"

@@ -80,7 +80,12 @@ static inline v2d xy(const Vec3 &a)
   return r;
 }
 
-template <int DIM, bool GRAV>
+// SHEARED: the image shift o has o1 != 0 in a sheared box (Lees-Edwards: the image o1 periods
+// up lies o1 s(tr) further in x and moves o1 times the shear rate faster). The unsheared
+// arithmetic only tests for it where the shift is not 0 (rarely), and hands such a pair to the
+// sheared instance; either partner computes the same numbers (the negated shift gives the
+// negated differences).
+template <int DIM, bool GRAV, bool SHEARED>
 inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p, double tr, const Vec3 &a,
                                                                      const Vec3 &u, const Flight &q, int o0,
                                                                      int o1, int o2, double h) const
@@ -102,19 +107,15 @@ inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p,
   }
   v2d r = xy(a) - bxy;
   double r2 = a.z - b2;
-  v2d v = xy(u) - wxy;
   if (o0 | o1 | o2) {
+    if (!SHEARED && o1 && opt.shear) return contact_sheared<DIM, GRAV>(p, tr, a, u, q, o0, o1, o2, h);
     const v2d s = {o0 * P.x, o1 * P.y};
     r -= s;
     if (DIM == 3) r2 -= o2 * P.z;
-    // (Lees-Edwards: an image o1 periods up lies o1 s(tr) further in x and moves o1 times the
-    // shear rate faster; the negated shift gives the negated numbers, so that either partner
-    // computes the same time)
-    if (o1 && opt.shear) {
-      r[0] -= o1 * shift_at(tr);
-      v[0] -= image_speed(o1);
-    }
+    if (SHEARED) r[0] -= o1 * shift_at(tr);
   }
+  v2d v = xy(u) - wxy;
+  if (SHEARED) v[0] -= image_speed(o1);
   const double v2 = DIM == 3 ? u.z - w2 : 0.0;
   const v2d rv = r * v, rr = r * r;
   const double b = DIM == 3 ? (rv[0] + rv[1]) + r2 * v2 : rv[0] + rv[1];
@@ -123,6 +124,14 @@ inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p,
   const double tau = contact_root<DIM>(b, c, v[0], v[1], v2, h);
   if (tau == NEVER) return NEVER;
   return at_least_now(tr + tau);
+}
+
+// (out of line: the scans' loops keep only the test)
+template <int DIM, bool GRAV>
+__attribute__((noinline)) double EDCore::contact_sheared(const Flight &p, double tr, const Vec3 &a, const Vec3 &u,
+                                                         const Flight &q, int o0, int o1, int o2, double h) const
+{
+  return contact_at<DIM, GRAV, true>(p, tr, a, u, q, o0, o1, o2, h);
 }
 
 template <int DIM, bool GRAV>

@@ -325,10 +325,20 @@ void EDCore::cell_remove(int i)
   *link = images[i].next;
 }
 
-void EDCore::predict_crossing(int i, const Vec3 &xs, const Vec3 &vs)
+void EDCore::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  Vec3 xi = xs, vi = vs;
-  if (opt.shear) sheared_frame(i, xi, vi);
+  if (opt.shear && images[i].k[1]) {
+    // (a sheared image: as its x cell sees it)
+    Vec3 x = xi, v = vi;
+    sheared_frame(i, x, v);
+    predict_crossing_in(i, x, v);
+    return;
+  }
+  predict_crossing_in(i, xi, vi);
+}
+
+void EDCore::predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi)
+{
   if (opt.dim == 2) {
     if (has_gravity)
       predict_crossing_t<2, true>(i, xi, vi);

@@ -328,6 +328,7 @@ class EDCore {
 
   // next cell crossing only; xi, vi: the particle's state now
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
+  void predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi);    // (in the x cell's frame)
   template <int DIM, bool GRAV>
   void predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi);
   void cross(int i);
@@ -420,9 +421,12 @@ class EDCore {
   // o P), >= now; NEVER also where it is certainly >= before
   template <int DIM, bool GRAV>
   double contact(const Flight &p, const Flight &q, int o0, int o1, int o2, double before) const;
-  template <int DIM, bool GRAV>
+  template <int DIM, bool GRAV, bool SHEARED = false>
   double contact_at(const Flight &p, double tr, const Vec3 &a, const Vec3 &u, const Flight &q, int o0,
                     int o1, int o2, double h) const;
+  template <int DIM, bool GRAV>
+  double contact_sheared(const Flight &p, double tr, const Vec3 &a, const Vec3 &u, const Flight &q, int o0,
+                         int o1, int o2, double h) const;
   // the canonical contact time of i and j at the image shift o (j's position + o P), >= now
   template <int DIM, bool GRAV>
   double pair_time(int i, int j, int o0, int o1, int o2) const;
