@@ -147,8 +147,9 @@ bool HardsphereGatherWindow::can_reuse(double T0)
 
 // does core particle s hold this window's atom (its position up to the periods LAMMPS wrapped,
 // which update its offsets)?
-bool HardsphereGatherWindow::reusable(int s, double T0, const hardsphere::FarWrap &wrap,
-                                      const hardsphere::ShearWrap &shear)
+inline __attribute__((always_inline)) bool HardsphereGatherWindow::reusable(int s, double T0,
+                                                                            const hardsphere::FarWrap &wrap,
+                                                                            const hardsphere::ShearWrap &shear)
 {
   const int k = order[s];
   // this window's x, v, omega of the atom (in place on one rank)
@@ -203,17 +204,23 @@ bool HardsphereGatherWindow::reusable_sheared(int s, const double *bx, const dou
   return true;
 }
 
+// a sheared box: what an atom k periods up in y is written as, x less k times the tilt and v_x
+// less k times its rate (out of line: the loops over all atoms only test for it)
+__attribute__((noinline)) void HardsphereGatherWindow::shear_view(int k, double *w) const
+{
+  w[0] -= k * state.view_xy;
+  w[3] -= k * state.view_u;
+}
+
 // what this window writes for core particle s at window time t: position in LAMMPS's frame
 // (less the stored periods; in a sheared box y's also less the tilt in x and its rate in the x
 // velocity), velocity, spin
-void HardsphereGatherWindow::written_state(int s, double t, double *w) const
+inline __attribute__((always_inline)) void HardsphereGatherWindow::written_state(int s, double t,
+                                                                                  double *w) const
 {
   ed.state(s, t, w, w + 3, w + 6);
   const int8_t *off = &offset[(size_t) s * noff];
-  if (sheared && off[1]) {
-    w[0] -= off[1] * state.view_xy;
-    w[3] -= off[1] * state.view_u;
-  }
+  if (sheared && off[1]) shear_view(off[1], w);
   for (int d = 0; d < noff; d++)
     if (off[d]) w[d] -= off[d] * wper[d];    // (not periodic: wper = 0 and off = 0)
 }
@@ -354,6 +361,8 @@ void HardsphereGatherWindow::take_back(double T1)
     state.pbc_xy = domain->xy;
   }
   bool offsets_full = false;    // an offset left its range: the next window starts afresh
+  // (sheared: y first, whose offset moves x by the tilt and the x velocity by its rate)
+  const int dims[3] = {sheared ? 1 : 0, sheared ? (noff == 3 ? 2 : 0) : 1, sheared ? 0 : 2};
   const bool per_atom = state.atoms.per_atom() > 0;    // (read once)
   for (int s = 0; s < ntotal; s++) {
     if (s + AHEAD < ntotal) ed.prefetch_particle(s + AHEAD);
@@ -362,15 +371,14 @@ void HardsphereGatherWindow::take_back(double T1)
     int dimg[3] = {0, 0, 0};
     double w[9];
     ed.state(s, T1, w, w + 3, w + 6);
-    // (sheared: y first, whose offset moves x by the tilt and the x velocity by its rate)
     for (int m = 0; m < noff; m++) {
-      const int d = sheared ? (m + 1) % noff : m;
+      const int d = dims[m];
       int off = stored[d];
-      if (sheared && d == 0 && stored[1]) {
-        w[0] -= stored[1] * state.view_xy;
-        w[3] -= stored[1] * state.view_u;
+      double tilt = 0.0;    // (sheared: the box's x extent at the atom's height, see FarWrap)
+      if (sheared && d == 0) {
+        if (stored[1]) shear_view(stored[1], w);
+        tilt = (w[1] - domain->boxlo[1]) * (domain->xy / domain->prd[1]);
       }
-      const double tilt = sheared && d == 0 ? (w[1] - domain->boxlo[1]) * (domain->xy / domain->prd[1]) : 0.0;
       w[d] = wrap.written(d, w[d], off, tilt);
       dimg[d] = off - stored[d];
       if (off < -OFFSET_MAX || off > OFFSET_MAX) offsets_full = true;

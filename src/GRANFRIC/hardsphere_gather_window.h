@@ -91,6 +91,7 @@ class HardsphereGatherWindow : protected Pointers {
   // the tilt further in x and moves k times the tilt's rate slower in x (as written with
   // HardsphereRunState::view_xy and view_u)
   bool sheared = false;
+  void shear_view(int k, double *w) const;
   bool reusable_sheared(int s, const double *bx, const double *bv, const double *bw, const double *w,
                         const hardsphere::ShearWrap &wrap);
 

@@ -27,6 +27,13 @@ void EDCore::scan_full(int i)
 template <bool FULL>
 void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 {
+  if (opt.shear) {    // (a sheared box: every scan takes the images' shift, see contact_at)
+    if (opt.dim == 2)
+      has_gravity ? scan_at<2, true, FULL, true>(i, dlo, dhi) : scan_at<2, false, FULL, true>(i, dlo, dhi);
+    else
+      has_gravity ? scan_at<3, true, FULL, true>(i, dlo, dhi) : scan_at<3, false, FULL, true>(i, dlo, dhi);
+    return;
+  }
   if (opt.dim == 2) {
     if (has_gravity)
       scan_at<2, true, FULL>(i, dlo, dhi);
@@ -42,13 +49,13 @@ void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 
 // A seeker at the present (as after its collision) is at least as late as every candidate
 // (at_present()): its scan knows that at compile time (LATEST)
-template <int DIM, bool GRAV, bool FULL>
+template <int DIM, bool GRAV, bool FULL, bool SHEARED>
 inline void EDCore::scan_at(int i, const int dlo[3], const int dhi[3])
 {
   if (at_present(i))
-    scan_t<DIM, GRAV, FULL, true>(i, dlo, dhi);
+    scan_t<DIM, GRAV, FULL, true, SHEARED>(i, dlo, dhi);
   else
-    scan_t<DIM, GRAV, FULL, false>(i, dlo, dhi);
+    scan_t<DIM, GRAV, FULL, false, SHEARED>(i, dlo, dhi);
 }
 
 // The contact time of a particle in stored state p and one in stored state q at the image shift
@@ -57,15 +64,16 @@ inline void EDCore::scan_at(int i, const int dlo[3], const int dhi[3])
 // Usually p is the later one (it has just collided): its stored state is then its state at tr.
 // Seen from q (shift -o) it is the same number: the differences change sign exactly. NEVER also
 // for a contact that certainly comes at or after before (see pair_contact_time's horizon).
-template <int DIM, bool GRAV>
+template <int DIM, bool GRAV, bool SHEARED>
 inline __attribute__((always_inline)) double EDCore::contact(const Flight &p, const Flight &q, int o0,
                                                                   int o1, int o2, double before) const
 {
-  if (q.t <= p.t) return contact_at<DIM, GRAV>(p, p.t, p.x, p.v, q, o0, o1, o2, horizon_limit(before - p.t, before));
+  if (q.t <= p.t)
+    return contact_at<DIM, GRAV, SHEARED>(p, p.t, p.x, p.v, q, o0, o1, o2, horizon_limit(before - p.t, before));
   const double tr = q.t, dt = tr - p.t;
   const Vec3 g = opt.gravity;
   const Vec3 xa = flight_x(p.x, p.v, dt, g, GRAV), va = flight_v(p.v, dt, g);
-  return contact_at<DIM, GRAV>(p, tr, xa, va, q, o0, o1, o2, horizon_limit(before - tr, before));
+  return contact_at<DIM, GRAV, SHEARED>(p, tr, xa, va, q, o0, o1, o2, horizon_limit(before - tr, before));
 }
 
 // contact() with p's state at tr >= q.t given (position a, velocity u) and the horizon as its
@@ -80,11 +88,11 @@ static inline v2d xy(const Vec3 &a)
   return r;
 }
 
-// SHEARED: the image shift o has o1 != 0 in a sheared box (Lees-Edwards: the image o1 periods
-// up lies o1 s(tr) further in x and moves o1 times the shear rate faster). The unsheared
-// arithmetic only tests for it where the shift is not 0 (rarely), and hands such a pair to the
-// sheared instance; either partner computes the same numbers (the negated shift gives the
-// negated differences).
+// SHEARED: a sheared box (Lees-Edwards: the image o1 periods up lies o1 s(tr) further in x and
+// moves o1 times the shear rate faster; at o1 = 0 the terms are exact zeros, which leave every
+// number as it is); either partner computes the same numbers (the negated shift gives the
+// negated differences). The scans of a sheared box are instances of their own (scan_in), so that
+// those of an unsheared one test nothing.
 template <int DIM, bool GRAV, bool SHEARED>
 inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p, double tr, const Vec3 &a,
                                                                      const Vec3 &u, const Flight &q, int o0,
@@ -108,7 +116,6 @@ inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p,
   v2d r = xy(a) - bxy;
   double r2 = a.z - b2;
   if (o0 | o1 | o2) {
-    if (!SHEARED && o1 && opt.shear) return contact_sheared<DIM, GRAV>(p, tr, a, u, q, o0, o1, o2, h);
     const v2d s = {o0 * P.x, o1 * P.y};
     r -= s;
     if (DIM == 3) r2 -= o2 * P.z;
@@ -126,29 +133,21 @@ inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p,
   return at_least_now(tr + tau);
 }
 
-// (out of line: the scans' loops keep only the test)
-template <int DIM, bool GRAV>
-__attribute__((noinline)) double EDCore::contact_sheared(const Flight &p, double tr, const Vec3 &a, const Vec3 &u,
-                                                         const Flight &q, int o0, int o1, int o2, double h) const
-{
-  return contact_at<DIM, GRAV, true>(p, tr, a, u, q, o0, o1, o2, h);
-}
-
-template <int DIM, bool GRAV>
+template <int DIM, bool GRAV, bool SHEARED>
 double EDCore::pair_time(int i, int j, int o0, int o1, int o2) const
 {
-  return contact<DIM, GRAV>(flights[i], flights[j], o0, o1, o2, NEVER);
+  return contact<DIM, GRAV, SHEARED>(flights[i], flights[j], o0, o1, o2, NEVER);
 }
 
 // One candidate j at the image shift o (j's position + o P): kept as the seeker's best when its
 // contact time is the earliest so far. LATEST: the seeker's stored time is the latest (no
 // candidate's is later), so that its state and horizon limit are the scan's for every one.
-template <int DIM, bool GRAV, bool LATEST>
+template <int DIM, bool GRAV, bool LATEST, bool SHEARED>
 inline __attribute__((always_inline)) void EDCore::offer(Seek &k, int j, int o0, int o1, int o2)
 {
   const Flight &q = flights[j];
-  const double t = LATEST ? contact_at<DIM, GRAV>(k.p, k.p.t, k.p.x, k.p.v, q, o0, o1, o2, k.h)
-                          : contact<DIM, GRAV>(k.p, q, o0, o1, o2, k.t);
+  const double t = LATEST ? contact_at<DIM, GRAV, SHEARED>(k.p, k.p.t, k.p.x, k.p.v, q, o0, o1, o2, k.h)
+                          : contact<DIM, GRAV, SHEARED>(k.p, q, o0, o1, o2, k.t);
   // two particles whose last collisions were with each other (same periodic image)
   // separate in free flight: relative motion is a straight line, they are no candidates
   // (tested only here, for a would-be candidate: the same outcome as skipping them)
@@ -224,19 +223,20 @@ bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8
 
 // The candidates in gathered cells, in order: first[f] heads the list of a cell reached at the
 // image shift shift[of[f]] (shift null: every shift 0)
-template <int DIM, bool GRAV, bool LATEST>
+template <int DIM, bool GRAV, bool LATEST, bool SHEARED>
 inline __attribute__((always_inline)) void EDCore::offer_cells(Seek &k, const int *first, int nfirst,
                                                                    const int8_t (*shift)[3], const int *of)
 {
   const int i = k.i;
   const int pk[3] = {images[i].k[0], images[i].k[1], images[i].k[2]};
   const CellImage *IM = images.data();
-  if (DIM == 3 && !GRAV && lanes && offer_cells_lanes<LATEST>(k, first, nfirst, shift, of)) return;
+  if (DIM == 3 && !GRAV && !SHEARED && lanes && offer_cells_lanes<LATEST>(k, first, nfirst, shift, of)) return;
   for (int f = 0; f < nfirst; f++) {
     const int8_t *u = shift ? shift[of[f]] : nullptr;
     const int k0 = u ? pk[0] + u[0] : pk[0], k1 = u ? pk[1] + u[1] : pk[1], k2 = u ? pk[2] + u[2] : pk[2];
     for (int j = first[f]; j >= 0; j = IM[j].next)
-      if (j != i) offer<DIM, GRAV, LATEST>(k, j, k0 - IM[j].k[0], k1 - IM[j].k[1], DIM == 3 ? k2 - IM[j].k[2] : 0);
+      if (j != i)
+        offer<DIM, GRAV, LATEST, SHEARED>(k, j, k0 - IM[j].k[0], k1 - IM[j].k[1], DIM == 3 ? k2 - IM[j].k[2] : 0);
   }
 }
 
@@ -245,7 +245,7 @@ inline __attribute__((always_inline)) void EDCore::offer_cells(Seek &k, const in
 // moves in z (v.z = 0, g.z = 0): the z terms of the relative motion vanish except the constant
 // z distance, and every operation left is the one of the 3d arithmetic in the same order, so
 // the contact times are the same numbers bit for bit.
-template <int DIM, bool GRAV, bool FULL, bool LATEST>
+template <int DIM, bool GRAV, bool FULL, bool LATEST, bool SHEARED>
 void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
 {
   Seek k = seek(i);
@@ -275,7 +275,7 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
           nfirst += j >= 0;
         }
       }
-    offer_cells<DIM, GRAV, LATEST>(k, first, nfirst, nullptr, nullptr);
+    offer_cells<DIM, GRAV, LATEST, SHEARED>(k, first, nfirst, nullptr, nullptr);
     settle(k);
     return;
   }
@@ -291,7 +291,7 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
       of[nfirst] = f;
       nfirst += j >= 0;
     }
-    offer_cells<DIM, GRAV, LATEST>(k, first, nfirst, shift, of);
+    offer_cells<DIM, GRAV, LATEST, SHEARED>(k, first, nfirst, shift, of);
     settle(k);
     return;
   }
@@ -315,7 +315,7 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = images[j].next)
-          if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] + kx - images[j].k[0], pk[1] + ky - images[j].k[1],
+          if (j != i) offer<DIM, GRAV, LATEST, SHEARED>(k, j, pk[0] + kx - images[j].k[0], pk[1] + ky - images[j].k[1],
                                       DIM == 3 ? pk[2] + kz - images[j].k[2] : 0);
       }
     }
@@ -434,7 +434,10 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
 void EDCore::offer_both(int i, int j, int o0, int o1, int o2)
 {
   double t;
-  if (opt.dim == 2)
+  if (opt.shear)
+    t = opt.dim == 2 ? (has_gravity ? pair_time<2, true, true>(i, j, o0, o1, o2) : pair_time<2, false, true>(i, j, o0, o1, o2))
+                     : (has_gravity ? pair_time<3, true, true>(i, j, o0, o1, o2) : pair_time<3, false, true>(i, j, o0, o1, o2));
+  else if (opt.dim == 2)
     t = has_gravity ? pair_time<2, true>(i, j, o0, o1, o2) : pair_time<2, false>(i, j, o0, o1, o2);
   else
     t = has_gravity ? pair_time<3, true>(i, j, o0, o1, o2) : pair_time<3, false>(i, j, o0, o1, o2);

@@ -325,19 +325,7 @@ void EDCore::cell_remove(int i)
   *link = images[i].next;
 }
 
-void EDCore::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
-{
-  if (opt.shear && images[i].k[1]) {
-    // (a sheared image: as its x cell sees it)
-    Vec3 x = xi, v = vi;
-    sheared_frame(i, x, v);
-    predict_crossing_in(i, x, v);
-    return;
-  }
-  predict_crossing_in(i, xi, vi);
-}
-
-void EDCore::predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi)
+inline __attribute__((always_inline)) void EDCore::predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi)
 {
   if (opt.dim == 2) {
     if (has_gravity)
@@ -350,6 +338,17 @@ void EDCore::predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi)
     else
       predict_crossing_t<3, false>(i, xi, vi);
   }
+}
+
+void EDCore::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
+{
+  if (opt.shear && images[i].k[1]) {    // (a sheared image: as its x cell sees it)
+    Vec3 x = xi, v = vi;
+    sheared_frame(i, x, v);
+    predict_crossing_in(i, x, v);
+    return;
+  }
+  predict_crossing_in(i, xi, vi);
 }
 
 // the dimension and whether there is gravity at all known at compile time

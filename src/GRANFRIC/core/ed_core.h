@@ -376,12 +376,13 @@ class EDCore {
   void scan_full(int i);    // offsets -1..1 in every dimension
   template <bool FULL>
   void scan_in(int i, const int dlo[3], const int dhi[3]);
-  template <int DIM, bool GRAV, bool FULL>
+  template <int DIM, bool GRAV, bool FULL, bool SHEARED = false>
   void scan_at(int i, const int dlo[3], const int dhi[3]);
   // whether i's stored state is at the present: no stored time is later than now, so i is then
   // the later one of every pair it predicts
   bool at_present(int i) const { return flights[i].t == now; }
-  template <int DIM, bool GRAV, bool FULL, bool LATEST>
+  // (SHEARED: the instances of a sheared box, see contact_at)
+  template <int DIM, bool GRAV, bool FULL, bool LATEST, bool SHEARED = false>
   void scan_t(int i, const int dlo[3], const int dhi[3]);
   // a scan in progress: particle i's stored state (read once), its best candidate so far
   // (time t, partner j, image shift o; j = -1: the schedule's candidate stands) and the
@@ -394,7 +395,7 @@ class EDCore {
   Seek seek(int i) const;            // from i's schedule
   void settle(const Seek &k);        // the best candidate into i's schedule
   // one candidate j at the image shift o (j's position + o P)
-  template <int DIM, bool GRAV, bool LATEST>
+  template <int DIM, bool GRAV, bool LATEST, bool SHEARED = false>
   void offer(Seek &k, int j, int o0, int o1, int o2);
   // (the best so far; the queue's bucket for its time asked for from the memory now, while the
   // scan goes on)
@@ -415,20 +416,17 @@ class EDCore {
   double at_least_now(double t) const { return t < now ? now : t; }    // (a contact time)
   // the candidates in the cells whose first particles a scan gathered (shift: their image
   // shifts, the f-th at of[f]; null: none)
-  template <int DIM, bool GRAV, bool LATEST>
+  template <int DIM, bool GRAV, bool LATEST, bool SHEARED = false>
   void offer_cells(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
   // the canonical contact time of stored states p and q at the image shift o (q's position +
   // o P), >= now; NEVER also where it is certainly >= before
-  template <int DIM, bool GRAV>
+  template <int DIM, bool GRAV, bool SHEARED = false>
   double contact(const Flight &p, const Flight &q, int o0, int o1, int o2, double before) const;
   template <int DIM, bool GRAV, bool SHEARED = false>
   double contact_at(const Flight &p, double tr, const Vec3 &a, const Vec3 &u, const Flight &q, int o0,
                     int o1, int o2, double h) const;
-  template <int DIM, bool GRAV>
-  double contact_sheared(const Flight &p, double tr, const Vec3 &a, const Vec3 &u, const Flight &q, int o0,
-                         int o1, int o2, double h) const;
   // the canonical contact time of i and j at the image shift o (j's position + o P), >= now
-  template <int DIM, bool GRAV>
+  template <int DIM, bool GRAV, bool SHEARED = false>
   double pair_time(int i, int j, int o0, int o1, int o2) const;
   // two particles that last collided with each other, at this image shift: no candidates
   bool separating(int i, int j, int o0, int o1, int o2) const
