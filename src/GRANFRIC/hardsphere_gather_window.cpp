@@ -230,7 +230,7 @@ inline __attribute__((always_inline)) void HardsphereGatherWindow::written_state
 void HardsphereGatherWindow::fresh_core(bool exact)
 {
   state.configure_core(state.core_options());
-  // (sheared: the images' shift at epoch time 0, from the tilt now)
+  // (sheared: the images' shift at epoch time 0, on the anchored line)
   if (sheared) ed.set_shear_shift(state.shear_shift_at(state.epoch_clock));
   ed.resize(ntotal);
   noff = domain->dimension;

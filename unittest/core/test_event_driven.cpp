@@ -146,22 +146,8 @@ TEST(EventDriven, QueueKeptAcrossWindowsEqualsReference)
     Reference ref = make_system(s, LawParams::walton(0.85, 0.3, 0.5));
     ref.gravity = dim == 2 ? Vec3(0.2, -0.7, 0.0) : Vec3(0.1, -0.3, -0.6);
     ref.tc = 0.005;
-    const double mft = mean_free_time(ref);
     CoreRun run(ref);
-    run.ed.start();
-    const double dt = 0.37 * mft;
-    const int nwin = 12;
-    for (int w = 0; w < nwin; w++) {
-      run.total.add(run.ed.advance_to(dt));
-      run.ed.rebase(dt);
-    }
-    ref.run_until(nwin * dt);
-    EXPECT_EQ(run.total.collisions, ref.collisions);
-    for (size_t i = 0; i < ref.p.size(); i++) {
-      EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
-      EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
-      EXPECT_LT(ref.p[i].a * norm(run.ed.particle((int) i).w - ref.p[i].w), 1e-9);
-    }
+    kept_queue_equals_reference(ref, run, 0.37 * mean_free_time(ref), 12);
   }
 }
 

@@ -103,22 +103,11 @@ TEST(Shear, QueueKeptAcrossWindowsEqualsReference)
     ref.gravity = dim == 2 ? Vec3(0.0, 0.0, 0.0) : Vec3(0.0, 0.0, -0.4);
     ref.shift0 = 0.93 * ref.L.x;    // (close to a period: the core's shift passes it)
     ref.tc = 0.005;
-    const double mft = mean_free_time(ref);
     CoreRun run(ref);
     run.ed.set_shear_shift(ref.shift0);
-    run.ed.start();
-    const double dt = 0.37 * mft;
+    const double dt = 0.37 * mean_free_time(ref);
     const int nwin = 12;
-    for (int w = 0; w < nwin; w++) {
-      run.total.add(run.ed.advance_to(dt));
-      run.ed.rebase(dt);
-    }
-    ref.run_until(nwin * dt);
-    EXPECT_EQ(run.total.collisions, ref.collisions);
-    for (size_t i = 0; i < ref.p.size(); i++) {
-      EXPECT_LT(norm(run.ed.position((int) i, 0.0) - ref.p[i].x), 1e-9);
-      EXPECT_LT(norm(run.ed.velocity((int) i, 0.0) - ref.p[i].v), 1e-9);
-    }
+    kept_queue_equals_reference(ref, run, dt, nwin);
     // the shift the core keeps is the reference's, less whole periods (at least one)
     const double s = ref.shift(nwin * dt), k = std::round((s - run.ed.shear_shift()) / ref.L.x);
     EXPECT_NEAR(run.ed.shear_shift() + k * ref.L.x, s, 1e-9 * ref.L.x);
