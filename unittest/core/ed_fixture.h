@@ -7,6 +7,8 @@
 #include "core/event_driven.h"
 #include "reference_ed.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
 #include <functional>
