@@ -1,13 +1,14 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 # Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
-"""Simple shear (examples/shear): the event-driven runs of examples/shear/in.shear2d in steady
-uniform shear flow against the kinetic theory (granfric.usf, DSMC of the Enskog-Boltzmann
-equation), and how the steady state departs from the homogeneous one as the box grows.
+"""Simple shear (examples/shear): the event-driven runs of examples/shear/in.shear2d (discs) and
+in.shear3d (spheres) in steady uniform shear flow against the kinetic theory (granfric.usf, DSMC
+of the Enskog-Boltzmann equation), and how the steady state departs from the homogeneous one as
+the box grows.
 
     PYTHONPATH=tools /usr/bin/python3 -m granfric shear [--quick|--full] [--out DIR]
 
-For each case (area fraction phi, N = nside^2 discs of the rough law r = 0.9, beta = 0, shear
-rate a = 0.05) the example runs to its steady state and averages over it; the reduced quantities
+For each case (dimension, fraction phi, N = nside^dim particles of the rough law r = 0.9,
+beta = 0, shear rate a = 0.05) the example runs to its steady state and averages over it; the reduced quantities
 are a* = a / nu(T_tr) (nu: the Enskog collision frequency of cooling.py), P*_ij = P_ij / (n T_tr),
 R = T_rot / T_tr and the measured collisions per particle and unit time over nu. Writes
 report.md (the table, the DSMC values and the relative deviations) and shear.png (the approach
