@@ -19,6 +19,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <set>
+#include <string>
 
 using namespace LAMMPS_NS;
 
@@ -47,7 +49,11 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
   else
     pos = utils::numeric(FLERR, arg[4], false, lmp);
   int iarg = 5;
+  std::set<std::string> given;    // (a keyword given twice would override or add silently)
   while (iarg < narg) {
+    if (!given.insert(arg[iarg]).second)
+      error->all(FLERR, "Fix hardsphere/wall keyword {} is given twice: give each keyword once",
+                 arg[iarg]);
     if (strcmp(arg[iarg], "coeffs") == 0) {
       // (every word up to the next keyword: a value that is not a number is reported as such
       // when the coefficients are checked against the pair style's law)
