@@ -201,7 +201,8 @@ void FixHardsphereED::check_plane()
              "fix pour need a region with z from 0 to 0 in 2d)", who, at[0], at[1], at[2], at[3]);
 }
 
-// a lower wall at or above an upper wall of the same dimension leaves no room between them
+// a lower wall at or above an upper wall of the same dimension (their swings included) leaves no
+// room between them
 // (a wall outside the box is reported by the wall itself, as that)
 void FixHardsphereED::check_walls_cross() const
 {
@@ -211,12 +212,12 @@ void FixHardsphereED::check_walls_cross() const
   for (auto *lo : run->walls)
     for (auto *hi : run->walls) {
       const granfric::EDWall a = lo->geometry(), b = hi->geometry();
-      if (a.dim != b.dim || a.side > 0 || b.side < 0 || a.pos + a.A < b.pos) continue;
+      if (a.dim != b.dim || a.side > 0 || b.side < 0 || a.pos + a.A < b.pos - b.A) continue;
       if (!inside(a) || !inside(b)) continue;
       error->all(FLERR, "Fix hardsphere/wall {} ({} at {}{}) is not below fix hardsphere/wall {} "
-                 "({} at {}): the lower wall must lie below the upper one", lo->wall_id(), lo->face(),
+                 "({} at {}{}): the lower wall must lie below the upper one", lo->wall_id(), lo->face(),
                  a.pos, a.A > 0.0 ? host::format(" + amplitude {}", a.A) : "", hi->wall_id(), hi->face(),
-                 b.pos);
+                 b.pos, b.A > 0.0 ? host::format(" - amplitude {}", b.A) : "");
     }
 }
 

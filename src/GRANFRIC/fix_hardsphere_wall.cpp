@@ -83,9 +83,6 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "Fix hardsphere/wall vibrate amplitude A = {} must be > 0", amplitude);
       if (!(omega > 0.0))
         error->all(FLERR, "Fix hardsphere/wall vibrate angular frequency = {} must be > 0", omega);
-      if (side > 0)
-        error->all(FLERR, "Fix hardsphere/wall vibrate is available for lower walls (xlo, ylo, "
-                   "zlo) only, not {}", face);
       iarg += 4;
     } else if (strcmp(arg[iarg], "thermal") == 0) {
       if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/wall thermal T seed", error);

@@ -35,7 +35,7 @@ struct RefWall {
   int dim = 1, side = -1;
   double pos = 0.0;
   LawParams law;
-  double A = 0.0, omega = 0.0;    // vibrating lower wall: piecewise-parabolic sinusoid mimic
+  double A = 0.0, omega = 0.0;    // vibrating wall (any side): piecewise-parabolic sinusoid mimic
   bool sine = false;              //   or the sinusoid itself
   Vec3 slide;                     // velocity within the wall's plane
   int shake_dim = -1;             // and an oscillation within it: displacement
@@ -147,10 +147,11 @@ struct Reference {
           double tau;
           if (w.A > 0.0) {
             // brute force: march in steps of 1/20000 period up to the best time found so far,
-            // then bisect the first downward zero of x - a - wall
+            // then bisect the first downward zero of the gap between surface and wall
             auto gap = [&](double s) {
               const double dt = s;
-              return xi[d] + vi[d] * dt + 0.5 * gravity[d] * dt * dt - p[i].a - w.height(time + s);
+              const double x = xi[d] + vi[d] * dt + 0.5 * gravity[d] * dt * dt;
+              return w.side < 0 ? x - p[i].a - w.height(time + s) : w.height(time + s) - x - p[i].a;
             };
             tau = NEVER;
             const double h = 2 * M_PI / w.omega / 20000;

@@ -110,7 +110,8 @@ def test_same_trajectory_on_1_2_4_ranks(tmp_path, scene):
 # conflicts and gathered redos
 BITWISE = {"dilute": dict(steps=420, r=1.0, rt=-1.0),
            "dense": dict(steps=400, dt=0.1, rd=0.98, bd=-0.9),
-           "driven": dict(steps=200), "vibrated": dict(steps=1000), "couette": dict(steps=400)}
+           "driven": dict(steps=200), "vibrated": dict(steps=1000), "shaken": dict(steps=1000),
+           "couette": dict(steps=400)}
 
 
 def identical(w, a, b, least=100):
