@@ -24,7 +24,7 @@
 using namespace LAMMPS_NS;
 
 ComputeHardsphereTemp::ComputeHardsphereTemp(LAMMPS *lmp, int narg, char **arg) :
-    GRANFRIC_COMPUTE_BASE(lmp, narg, arg), qshape(-1.0), qused(0.4)
+    GRANFRIC_COMPUTE_BASE(lmp, narg, arg), qshape(-1.0)
 {
   int iarg = 3;
   while (iarg < narg) {
@@ -57,19 +57,18 @@ ComputeHardsphereTemp::~ComputeHardsphereTemp()
   delete[] extlist;
 }
 
+// the shape factor per type: the inertia keyword's for all, or the pair style's per type
 void ComputeHardsphereTemp::init()
 {
-  if (qshape > 0.0) {
-    qused = qshape;
-    return;
-  }
+  qused.assign(atom->ntypes + 1, qshape);
+  if (qshape > 0.0) return;
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   if (!pair)
     error->all(FLERR,
                "Compute hardsphere/temp takes the shape factor from a hardsphere pair style; "
                "with pair style {} give it with the inertia keyword",
                force->pair_style ? force->pair_style : "none");
-  qused = pair->shape_factor();
+  for (int t = 1; t <= atom->ntypes; t++) qused[t] = pair->shape_factor(t);
 }
 
 // degrees of freedom of the scalar: d per atom of the group, as in the papers' T_tr (no
@@ -97,7 +96,7 @@ void ComputeHardsphereTemp::sums(double *all)
 {
   double **x = atom->x, **v = atom->v, **omega = atom->omega;
   const double *radius = atom->radius, *rmass = atom->rmass;
-  const int *mask = atom->mask;
+  const int *mask = atom->mask, *type = atom->type;
   const bool dim2 = domain->dimension == 2;
   const bool peculiar = domain->deform_vremap;
   double mean[4] = {0.0, 0.0, 0.0, 0.0};    // the group's mean spin, and its count
@@ -126,7 +125,7 @@ void ComputeHardsphereTemp::sums(double *all)
     }
     local[0] += rmass[i] * (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
     const double w2 = dim2 ? w[2] * w[2] : w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-    local[1] += qused * rmass[i] * radius[i] * radius[i] * w2;
+    local[1] += qused[type[i]] * rmass[i] * radius[i] * radius[i] * w2;
     local[2] += 1.0;
   }
   MPI_Allreduce(local, all, 3, MPI_DOUBLE, MPI_SUM, world);

@@ -19,6 +19,8 @@ ComputeStyle(hardsphere/temp,ComputeHardsphereTemp);
 #include "compute.h"
 #include "host_compat.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class ComputeHardsphereTemp : public Compute {
@@ -34,8 +36,8 @@ class ComputeHardsphereTemp : public Compute {
   double compute_scalar() override;
 
  private:
-  double qshape;      // I/(m a^2); < 0: take it from the hardsphere pair style
-  double qused;
+  double qshape;                // I/(m a^2) for all types; < 0: from the hardsphere pair style
+  std::vector<double> qused;    // per type (index 0 unused)
   void sums(double *all);    // sum m v^2, sum I w^2, atoms: over the group and all ranks
 };
 

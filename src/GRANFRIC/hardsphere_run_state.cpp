@@ -43,7 +43,8 @@ granfric::EDOptions HardsphereRunState::core_options() const
   o.max_collisions = settings.maxevents;
   o.gamma_bins = settings.gamma_bins;
   for (auto *w : walls) o.walls.push_back(w->wall());
-  o.shape.assign(atom->ntypes + 1, pair->shape_factor());
+  o.shape.assign(atom->ntypes + 1, 0.4);
+  for (int t = 1; t <= atom->ntypes; t++) o.shape[t] = pair->shape_factor(t);
   // a triclinic box is sheared in xy (check_box_changes): Lees-Edwards images, moving at the
   // tilt's rate when fix deform changes it
   o.shear = domain->triclinic;

@@ -19,6 +19,7 @@
 #include "neighbor.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 using namespace LAMMPS_NS;
@@ -94,26 +95,73 @@ void PairHardsphere::compute(int eflag, int vflag)
 }
 
 /* ----------------------------------------------------------------------
-   pair_style hardsphere/<law> [inertia sphere|disc|<q>]
+   pair_style hardsphere/<law> [inertia sphere|disc|<q>] [inertia/type I sphere|disc|<q> ...]
 ------------------------------------------------------------------------- */
 
 void PairHardsphere::settings(int narg, char **arg)
 {
   qshape = 0.4;
   inertia_style = SPHERE;
+  type_shapes.clear();
+  const std::string who = "Pair style " + law_style(lawkind);
   int iarg = 0;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "inertia") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "pair_style inertia", error);
       bool disc;
-      qshape = hardsphere::parse_inertia(lmp, "Pair style " + law_style(lawkind), arg[iarg + 1], disc);
+      qshape = hardsphere::parse_inertia(lmp, who, arg[iarg + 1], disc);
       inertia_style = disc ? DISC : (strcmp(arg[iarg + 1], "sphere") == 0 ? SPHERE : NUMBER);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "inertia/type") == 0) {
+      if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "pair_style inertia/type I q", error);
+      int lo, hi;
+      if (!type_range(arg[iarg + 1], 1 << 30, lo, hi))
+        error->all(FLERR, "{} inertia/type {}: not a type or a range of types (I, I*J, *J, I* or *)",
+                   who, arg[iarg + 1]);
+      bool disc;
+      const double q = hardsphere::parse_inertia(lmp, who + " inertia/type " + arg[iarg + 1], arg[iarg + 2], disc);
+      type_shapes.push_back({arg[iarg + 1], q, disc});
+      iarg += 3;
     } else {
-      error->all(FLERR, "Unknown pair style {} keyword: {} (allowed: inertia)",
+      error->all(FLERR, "Unknown pair style {} keyword: {} (allowed: inertia, inertia/type)",
                  law_style(lawkind), arg[iarg]);
     }
   }
+}
+
+// a type or range of types as pair_coeff takes them (I, I*J, *J, I*, *), with ntypes types:
+// false if the text is none of these or the range is empty
+bool PairHardsphere::type_range(const std::string &text, int ntypes, int &lo, int &hi)
+{
+  const size_t star = text.find('*');
+  auto number = [&](const std::string &t, int empty, int &v) {
+    if (t.empty()) {
+      v = empty;
+      return true;
+    }
+    if (!utils::is_integer(t)) return false;
+    const long x = std::strtol(t.c_str(), nullptr, 10);
+    if (x < 1 || x > (1L << 30)) return false;
+    v = (int) x;
+    return true;
+  };
+  if (star == std::string::npos) {
+    if (!number(text, 0, lo) || text.empty()) return false;
+    hi = lo;
+  } else if (!number(text.substr(0, star), 1, lo) || !number(text.substr(star + 1), ntypes, hi)) {
+    return false;
+  }
+  return lo >= 1 && lo <= hi && hi <= ntypes;
+}
+
+double PairHardsphere::shape_factor(int itype) const
+{
+  double q = qshape;
+  for (const auto &s : type_shapes) {
+    int lo, hi;
+    if (type_range(s.types, atom->ntypes, lo, hi) && itype >= lo && itype <= hi) q = s.q;
+  }
+  return q;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -220,6 +268,15 @@ void PairHardsphere::init_style()
   if (inertia_style == DISC && domain->dimension != 2)
     error->all(FLERR, "Pair style {} inertia disc requires a 2d simulation (dimension 2)",
                law_style(lawkind));
+  for (const auto &s : type_shapes) {
+    int lo, hi;
+    if (!type_range(s.types, atom->ntypes, lo, hi))
+      error->all(FLERR, "Pair style {} inertia/type {}: no such type (types 1 to {})",
+                 law_style(lawkind), s.types, atom->ntypes);
+    if (s.disc && domain->dimension != 2)
+      error->all(FLERR, "Pair style {} inertia/type {} disc requires a 2d simulation (dimension 2)",
+                 law_style(lawkind), s.types);
+  }
 
   // no neighbor list: fix hardsphere/ed finds partners with its own cell grid, and compute
   // pair/local requests an occasional list of its own
@@ -287,6 +344,16 @@ void PairHardsphere::write_restart_settings(FILE *fp)
   fwrite(&kind, sizeof(int), 1, fp);
   fwrite(&inertia_style, sizeof(int), 1, fp);
   fwrite(&qshape, sizeof(double), 1, fp);
+  // inertia/type: how many, then each one's type text (length and characters), q and disc flag
+  const int n = (int) type_shapes.size();
+  fwrite(&n, sizeof(int), 1, fp);
+  for (const auto &t : type_shapes) {
+    const int len = (int) t.types.size(), disc = t.disc ? 1 : 0;
+    fwrite(&len, sizeof(int), 1, fp);
+    fwrite(t.types.data(), sizeof(char), len, fp);
+    fwrite(&t.q, sizeof(double), 1, fp);
+    fwrite(&disc, sizeof(int), 1, fp);
+  }
 }
 
 void PairHardsphere::read_restart_settings(GRANFRIC_RESTART_ARGS)
@@ -300,6 +367,26 @@ void PairHardsphere::read_restart_settings(GRANFRIC_RESTART_ARGS)
   MPI_Bcast(&kind, 1, MPI_INT, 0, world);
   MPI_Bcast(&inertia_style, 1, MPI_INT, 0, world);
   MPI_Bcast(&qshape, 1, MPI_DOUBLE, 0, world);
+  int n = 0;
+  if (comm->me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&n, 1, MPI_INT, 0, world);
+  type_shapes.assign(n, TypeShape());
+  for (auto &t : type_shapes) {
+    int len = 0, disc = 0;
+    if (comm->me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);
+    MPI_Bcast(&len, 1, MPI_INT, 0, world);
+    std::vector<char> text(len + 1, 0);
+    if (comm->me == 0) {
+      utils::sfread(FLERR, text.data(), sizeof(char), len, fp, nullptr, error);
+      utils::sfread(FLERR, &t.q, sizeof(double), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &disc, sizeof(int), 1, fp, nullptr, error);
+    }
+    MPI_Bcast(text.data(), len, MPI_CHAR, 0, world);
+    MPI_Bcast(&t.q, 1, MPI_DOUBLE, 0, world);
+    MPI_Bcast(&disc, 1, MPI_INT, 0, world);
+    t.types = text.data();
+    t.disc = disc != 0;
+  }
   if (kind != static_cast<int>(lawkind))
     error->all(FLERR, "Restart file holds a different hardsphere collision law than {}",
                law_style(lawkind));
@@ -352,12 +439,12 @@ double PairHardsphere::single(int i, int j, int itype, int jtype, double rsq, do
   b1.w = Vec3::from(omega[i]);
   b1.m = atom->rmass[i];
   b1.a = atom->radius[i];
-  b1.q = qshape;
+  b1.q = shape_factor(itype);
   b2.v = Vec3::from(v[j]);
   b2.w = Vec3::from(omega[j]);
   b2.m = atom->rmass[j];
   b2.a = atom->radius[j];
-  b2.q = qshape;
+  b2.q = shape_factor(jtype);
 
   const granfric::Collision c = granfric::collide(params[itype][jtype], b1, b2, n);
   svector[0] = c.gn;

@@ -3,9 +3,10 @@
    Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: hard-sphere collision laws as LAMMPS pair styles.
 
-   pair_style hardsphere/rough  [inertia sphere|disc|<q>]   pair_coeff I J r beta
-   pair_style hardsphere/walton [inertia sphere|disc|<q>]   pair_coeff I J r mu rtmax
-   pair_style hardsphere/jz     [inertia sphere|disc|<q>]   pair_coeff I J qn qt kappa_s kappa_d
+   pair_style hardsphere/rough  [inertia Q] [inertia/type I Q ...]   pair_coeff I J r beta
+   pair_style hardsphere/walton [inertia Q] [inertia/type I Q ...]   pair_coeff I J r mu rtmax
+   pair_style hardsphere/jz     [inertia Q] [inertia/type I Q ...]   pair_coeff I J qn qt kappa_s kappa_d
+   Q = sphere | disc | a number 0 < q <= 1; I = a type or a range of types
 
    The pair styles compute no forces: they own the collision law of each type pair (used by
    fix hardsphere/ed and the other GRANFRIC styles), the contact distance a_i + a_j, the
@@ -30,6 +31,7 @@ PairStyle(hardsphere/jz,PairHardsphereJZ);
 #include "host_compat.h"
 
 #include <string>
+#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -61,7 +63,10 @@ class PairHardsphere : public Pair {
 
   // interface for the GRANFRIC fixes and computes
   const granfric::LawParams &law(int itype, int jtype) const { return params[itype][jtype]; }
-  double shape_factor() const { return qshape; }
+  // the shape factor I/(m a^2) of atoms of type itype (inertia, or inertia/type for that type)
+  double shape_factor(int itype) const;
+  // true when every type has the shape factor of the inertia keyword
+  bool one_shape() const { return type_shapes.empty(); }
   granfric::LawKind kind() const { return lawkind; }
   // law parameters for particle-wall contacts of type itype when a wall names none: I,I's
   const granfric::LawParams &wall_law(int itype) const { return params[itype][itype]; }
@@ -75,12 +80,21 @@ class PairHardsphere : public Pair {
   int nraw;                       // number of pair_coeff values of this law
   double qshape;                  // shape factor I/(m a^2)
   int inertia_style;              // SPHERE, DISC or NUMBER, for messages and restart
+  // inertia/type: a type or range of types (as pair_coeff takes them) and its shape factor,
+  // in the order given (a later one overrides an earlier one for the types both name)
+  struct TypeShape {
+    std::string types;
+    double q;
+    bool disc;
+  };
+  std::vector<TypeShape> type_shapes;
   double ***raw;                  // raw pair_coeff values per type pair, for write_data/restart
   granfric::LawParams **params;   // law per type pair
   double *onerad, *maxrad;        // largest radius per type, locally and globally
   double last_cut = 0.0;          // the largest cut-off while there were atoms
 
   void allocate();
+  static bool type_range(const std::string &text, int ntypes, int &lo, int &hi);
   void set_law(int i, int j);
   void mix(int i, int j);
 };

@@ -108,7 +108,7 @@ TEST_F(PairErrors, Settings)
   EXPECT_LMP_ERROR(lmp.get(), "pair_style hardsphere/rough inertia 0", "is out of range");
   EXPECT_LMP_ERROR(lmp.get(), "pair_style hardsphere/rough inertia", "Illegal pair_style inertia");
   EXPECT_LMP_ERROR(lmp.get(), "pair_style hardsphere/walton spin 1",
-                   "Unknown pair style hardsphere/walton keyword: spin \\(allowed: inertia\\)");
+                   "Unknown pair style hardsphere/walton keyword: spin \\(allowed: inertia, inertia/type\\)");
 }
 
 TEST_F(PairErrors, DiscNeeds2d)
