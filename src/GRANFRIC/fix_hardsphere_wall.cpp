@@ -160,15 +160,15 @@ void FixHardsphereWall::init()
   hardsphere::require_ed(lmp, style, id, "processes the collisions with it");
   auto *pair = dynamic_cast<PairHardsphere *>(force->pair);
   if (!pair) error->all(FLERR, "Fix hardsphere/wall {} needs a hardsphere pair style", id);
-  if (!coeffs.empty() && (int) coeffs.size() != pair->ncoeff())
+  if (!coeffs.empty() && (int) coeffs.size() < pair->ncoeff())
     error->all(FLERR, "Fix hardsphere/wall {} coeffs: {} values given, pair style {} takes {} ({})",
                id, coeffs.size(), force->pair_style, pair->ncoeff(), pair->coeff_names());
   if (!coeffs.empty()) {
     // parsed (and checked, with any warning) once per run
     std::vector<char *> a;
     for (auto &c : coeffs) a.push_back(const_cast<char *>(c.c_str()));
-    double raw[4];
-    own_law = pair->parse_law(std::string("Fix hardsphere/wall ") + id + " coeffs", a.data(), raw);
+    double raw[PairHardsphere::NVALUES];
+    own_law = pair->parse_law(std::string("Fix hardsphere/wall ") + id + " coeffs", (int) a.size(), a.data(), raw);
   }
   const double p = edge ? (side < 0 ? domain->boxlo[dim] : domain->boxhi[dim]) : pos;
   if (p < domain->boxlo[dim] || p > domain->boxhi[dim])

@@ -29,7 +29,11 @@ using granfric::LawParams;
 
 enum { SPHERE, DISC, NUMBER };
 
-static constexpr int MAXRAW = granfric::LawSpec::MAXCOEFF;
+// raw values per type pair: [0, ncoeff) the law's coefficients, [MODEL] the normal restitution
+// model's index + 1 (0: the law's constant restitution), then the model's coefficients
+static constexpr int MODEL = granfric::LawSpec::MAXCOEFF;
+static constexpr int MAXRAW = MODEL + 1 + granfric::RestitutionSpec::MAXCOEFF;
+static_assert(MAXRAW == PairHardsphere::NVALUES, "pair_hardsphere.h: NVALUES");
 
 static std::string law_style(LawKind k)
 {
@@ -183,13 +187,43 @@ static double parse_value(const std::string &who, const char *name, const char *
   return utils::numeric(FLERR, v, false, lmp);
 }
 
-// the law's coefficients from arg (as many as the law has) into values, checked against the
-// table of laws; errors in the name of who
-LawParams PairHardsphere::parse_law(const std::string &who, char **arg, double *values) const
+// the law of raw values (already checked): the law's map, and the restitution model's
+static LawParams law_from(LawKind kind, const double *values)
+{
+  LawParams p = granfric::law_spec(kind).make(values);
+  if (values[MODEL] > 0.0) granfric::restitution_spec((int) values[MODEL] - 1).apply(p, values + MODEL + 1);
+  return p;
+}
+
+// The law's coefficients from arg[0 .. narg-1] (as many as the law has, then optionally a
+// normal restitution model and its values) into values, checked against the tables of laws and
+// models; errors in the name of who
+LawParams PairHardsphere::parse_law(const std::string &who, int narg, char **arg, double *values) const
 {
   const granfric::LawSpec &spec = granfric::law_spec(lawkind);
+  for (int k = 0; k < MAXRAW; k++) values[k] = 0.0;
+  const granfric::RestitutionSpec *model = nullptr;
+  if (narg > spec.ncoeff) {
+    model = granfric::find_restitution(arg[spec.ncoeff]);
+    if (!model && utils::is_double(arg[spec.ncoeff]))
+      error->all(FLERR, "{}: {} values given, pair style {} takes {} ({}), optionally followed by "
+                 "viscoelastic vref or viscoelastic/material Y nu A", who, narg, law_style(lawkind),
+                 spec.ncoeff, spec.coeff_names);
+    if (!model)
+      error->all(FLERR, "{}: {} after the coefficients {} is not a normal restitution model (allowed: "
+                 "viscoelastic vref, viscoelastic/material Y nu A)", who, arg[spec.ncoeff], spec.coeff_names);
+    if (narg != spec.ncoeff + 1 + model->ncoeff)
+      error->all(FLERR, "{}: {} takes {} value{} ({}), {} given", who, model->name, model->ncoeff,
+                 model->ncoeff > 1 ? "s" : "", model->coeff_names, narg - spec.ncoeff - 1);
+  }
+  const bool null = strcmp(arg[0], "NULL") == 0, want_null = model && model->normal_null;
+  if (null != want_null)
+    error->all(FLERR, "{}: {} = {}: {}", who, spec.coeff[0].name, arg[0],
+               want_null ? std::string("give NULL with ") + model->name + " (the model sets the normal restitution)"
+                         : std::string("NULL only with viscoelastic/material"));
   for (int k = 0; k < spec.ncoeff; k++)
-    values[k] = parse_value(who, spec.coeff[k].name, arg[k], spec.coeff[k].inf_ok, lmp);
+    values[k] = k == 0 && null ? spec.elastic_normal
+                               : parse_value(who, spec.coeff[k].name, arg[k], spec.coeff[k].inf_ok, lmp);
   const int bad = granfric::first_bad_coeff(spec, values);
   if (bad >= 0 && bad < spec.ncoeff)
     error->all(FLERR, "{}: {} = {} is out of range ({})", who, spec.coeff[bad].name, values[bad],
@@ -197,7 +231,21 @@ LawParams PairHardsphere::parse_law(const std::string &who, char **arg, double *
   if (bad == spec.ncoeff)
     error->all(FLERR, "{}: {}; {} = {}", who, spec.joint, spec.coeff_names,
                utils::join_words(std::vector<std::string>(arg, arg + spec.ncoeff), " "));
-  const LawParams p = spec.make(values);
+  if (model) {
+    const int index = (int) (model - &granfric::restitution_spec(0));
+    values[MODEL] = index + 1;
+    double *mc = values + MODEL + 1;
+    for (int m = 0; m < model->ncoeff; m++)
+      mc[m] = parse_value(who + " " + model->name, model->coeff[m].name, arg[spec.ncoeff + 1 + m], false, lmp);
+    const int badm = granfric::first_bad_restitution_coeff(*model, mc);
+    if (badm >= 0)
+      error->all(FLERR, "{} {}: {} = {} is out of range ({})", who, model->name, model->coeff[badm].name,
+                 mc[badm], model->coeff[badm].range);
+    LawParams check = spec.make(values);
+    if (const char *why = model->apply(check, mc))
+      error->all(FLERR, "{}: {} = {} with {}: {}", who, spec.coeff[0].name, arg[0], model->name, why);
+  }
+  const LawParams p = law_from(lawkind, values);
   if (p.can_create_energy() && comm->me == 0)
     error->warning(FLERR,
                    "{}: kappa_d = {} > kappa_s = {}: the Jenkins-Zhang map is then "
@@ -206,23 +254,41 @@ LawParams PairHardsphere::parse_law(const std::string &who, char **arg, double *
   return p;
 }
 
+// the raw values of one type pair as pair_coeff takes them (write_data)
+static void print_coeffs(FILE *fp, LawKind kind, const double *values)
+{
+  const granfric::LawSpec &spec = granfric::law_spec(kind);
+  const granfric::RestitutionSpec *model =
+      values[MODEL] > 0.0 ? &granfric::restitution_spec((int) values[MODEL] - 1) : nullptr;
+  for (int k = 0; k < spec.ncoeff; k++) {
+    if (k == 0 && model && model->normal_null)
+      fprintf(fp, " NULL");
+    else
+      fprintf(fp, " %.17g", values[k]);
+  }
+  if (!model) return;
+  fprintf(fp, " %s", model->name);
+  for (int m = 0; m < model->ncoeff; m++) fprintf(fp, " %.17g", values[MODEL + 1 + m]);
+}
+
 /* ----------------------------------------------------------------------
    pair_coeff I J <law coefficients>
 ------------------------------------------------------------------------- */
 
 void PairHardsphere::coeff(int narg, char **arg)
 {
-  if (narg != 2 + nraw)
-    error->all(FLERR, "Incorrect args for pair coefficients: pair_coeff I J {} for {} ({} given)",
-               coeff_names(), law_style(lawkind), narg);
+  if (narg < 2 + nraw || (narg > 2 + nraw && utils::is_double(arg[2 + nraw])))
+    error->all(FLERR, "Incorrect args for pair coefficients: pair_coeff I J {} for {} ({} given), optionally "
+               "followed by viscoelastic vref or viscoelastic/material Y nu A", coeff_names(),
+               law_style(lawkind), narg);
   if (!allocated) allocate();
 
   int ilo, ihi, jlo, jhi;
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
-  double values[MAXRAW] = {0.0, 0.0, 0.0, 0.0};
-  parse_law(std::string("Pair_coeff ") + law_style(lawkind), arg + 2, values);
+  double values[MAXRAW];
+  parse_law(std::string("Pair_coeff ") + law_style(lawkind), narg - 2, arg + 2, values);
 
   int count = 0;
   for (int i = ilo; i <= ihi; i++)
@@ -238,14 +304,22 @@ void PairHardsphere::coeff(int narg, char **arg)
 // params[i][j] from raw[i][j] (values already validated)
 void PairHardsphere::set_law(int i, int j)
 {
-  params[i][j] = granfric::law_spec(lawkind).make(raw[i][j]);
+  params[i][j] = law_from(lawkind, raw[i][j]);
   params[j][i] = params[i][j];
 }
 
-// unset I,J coefficients: arithmetic mean of I,I and J,J (inf if either is inf)
+// unset I,J coefficients: arithmetic mean of I,I and J,J (inf if either is inf), of the law's
+// coefficients and, when both use the same normal restitution model, of its coefficients
 void PairHardsphere::mix(int i, int j)
 {
-  for (int k = 0; k < nraw; k++) {
+  if (raw[i][i][MODEL] != raw[j][j][MODEL])
+    error->all(FLERR, "Pair style {}: types {} and {} have different normal restitution models; set "
+               "pair_coeff {} {} explicitly", law_style(lawkind), i, j, i, j);
+  for (int k = 0; k < MAXRAW; k++) {
+    if (k >= nraw && k <= MODEL) {
+      raw[i][j][k] = raw[i][i][k];
+      continue;
+    }
     const double a = raw[i][i][k], b = raw[j][j][k];
     raw[i][j][k] = (a == INF || b == INF) ? INF : 0.5 * (a + b);
   }
@@ -311,6 +385,12 @@ double PairHardsphere::init_one(int i, int j)
 
 /* ---------------------------------------------------------------------- */
 
+// Restart files: the settings begin with the law's kind plus RESTART_FORMAT times 1000. Files of
+// format 0 (written before inertia/type and the restitution models) hold no inertia/type list
+// and four values per type pair; they are still read.
+static constexpr int RESTART_FORMAT = 1;
+static constexpr int RAW_FORMAT0 = 4;
+
 void PairHardsphere::write_restart(FILE *fp)
 {
   write_restart_settings(fp);
@@ -331,7 +411,9 @@ void PairHardsphere::read_restart(GRANFRIC_RESTART_ARGS)
       if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
       MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
       if (setflag[i][j]) {
-        if (me == 0) utils::sfread(FLERR, raw[i][j], sizeof(double), MAXRAW, fp, nullptr, error);
+        const int nread = restart_format == 0 ? RAW_FORMAT0 : MAXRAW;
+        for (int k = 0; k < MAXRAW; k++) raw[i][j][k] = 0.0;
+        if (me == 0) utils::sfread(FLERR, raw[i][j], sizeof(double), nread, fp, nullptr, error);
         MPI_Bcast(raw[i][j], MAXRAW, MPI_DOUBLE, 0, world);
         set_law(i, j);
       }
@@ -340,7 +422,7 @@ void PairHardsphere::read_restart(GRANFRIC_RESTART_ARGS)
 
 void PairHardsphere::write_restart_settings(FILE *fp)
 {
-  int kind = static_cast<int>(lawkind);
+  int kind = static_cast<int>(lawkind) + 1000 * RESTART_FORMAT;
   fwrite(&kind, sizeof(int), 1, fp);
   fwrite(&inertia_style, sizeof(int), 1, fp);
   fwrite(&qshape, sizeof(double), 1, fp);
@@ -367,8 +449,13 @@ void PairHardsphere::read_restart_settings(GRANFRIC_RESTART_ARGS)
   MPI_Bcast(&kind, 1, MPI_INT, 0, world);
   MPI_Bcast(&inertia_style, 1, MPI_INT, 0, world);
   MPI_Bcast(&qshape, 1, MPI_DOUBLE, 0, world);
+  restart_format = kind / 1000;
+  kind %= 1000;
+  if (restart_format > RESTART_FORMAT)
+    error->all(FLERR, "Restart file of pair style {} has format {}, newer than this build reads ({})",
+               law_style(lawkind), restart_format, RESTART_FORMAT);
   int n = 0;
-  if (comm->me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
+  if (comm->me == 0 && restart_format > 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
   MPI_Bcast(&n, 1, MPI_INT, 0, world);
   type_shapes.assign(n, TypeShape());
   for (auto &t : type_shapes) {
@@ -400,7 +487,7 @@ void PairHardsphere::write_data(FILE *fp)
 {
   for (int i = 1; i <= atom->ntypes; i++) {
     fprintf(fp, "%d", i);
-    for (int k = 0; k < nraw; k++) fprintf(fp, " %.17g", raw[i][i][k]);
+    print_coeffs(fp, lawkind, raw[i][i]);
     fprintf(fp, "\n");
   }
 }
@@ -410,7 +497,7 @@ void PairHardsphere::write_data_all(FILE *fp)
   for (int i = 1; i <= atom->ntypes; i++)
     for (int j = i; j <= atom->ntypes; j++) {
       fprintf(fp, "%d %d", i, j);
-      for (int k = 0; k < nraw; k++) fprintf(fp, " %.17g", raw[i][j][k]);
+      print_coeffs(fp, lawkind, raw[i][j]);
       fprintf(fp, "\n");
     }
 }

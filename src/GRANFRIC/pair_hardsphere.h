@@ -70,8 +70,10 @@ class PairHardsphere : public Pair {
   granfric::LawKind kind() const { return lawkind; }
   // law parameters for particle-wall contacts of type itype when a wall names none: I,I's
   const granfric::LawParams &wall_law(int itype) const { return params[itype][itype]; }
-  // parse the law's coefficients from arg[0..ncoeff-1]; 'who' names the command in errors
-  granfric::LawParams parse_law(const std::string &who, char **arg, double *raw) const;
+  // parse the law's coefficients from arg[0..narg-1] (the law's, then optionally a normal
+  // restitution model and its values) into raw; 'who' names the command in errors
+  granfric::LawParams parse_law(const std::string &who, int narg, char **arg, double *raw) const;
+  static constexpr int NVALUES = 8;    // the size of raw: the law's and the model's values
   int ncoeff() const { return nraw; }
   const char *coeff_names() const;
 
@@ -92,6 +94,7 @@ class PairHardsphere : public Pair {
   granfric::LawParams **params;   // law per type pair
   double *onerad, *maxrad;        // largest radius per type, locally and globally
   double last_cut = 0.0;          // the largest cut-off while there were atoms
+  int restart_format = 1;         // of the restart file being read
 
   void allocate();
   static bool type_range(const std::string &text, int ntypes, int &lo, int &hi);

@@ -11,6 +11,7 @@ import numpy as np
 
 _lib = None
 _laws = None
+_models = None
 
 
 def build_dir():
@@ -36,6 +37,16 @@ def lib():
         _lib.granfric_law_coeff.argtypes = [ctypes.c_int, ctypes.c_int,
                                             ctypes.POINTER(ctypes.c_char_p)]
         _lib.granfric_law_check.argtypes = [ctypes.c_int, d]
+        _lib.granfric_collide_model.argtypes = [ctypes.c_int, d, ctypes.c_int, d, d, d, d, d]
+        _lib.granfric_collide_model.restype = ctypes.c_int
+        _lib.granfric_law_elastic_normal.restype = ctypes.c_double
+        _lib.granfric_restitution_name.restype = ctypes.c_char_p
+        _lib.granfric_restitution_coeff.restype = ctypes.c_char_p
+        _lib.granfric_restitution_coeff.argtypes = [ctypes.c_int, ctypes.c_int,
+                                                    ctypes.POINTER(ctypes.c_char_p)]
+        _lib.granfric_restitution_check.argtypes = [ctypes.c_int, d]
+        _lib.granfric_viscoelastic_restitution.argtypes = [ctypes.c_double]
+        _lib.granfric_viscoelastic_restitution.restype = ctypes.c_double
     return _lib
 
 
@@ -52,6 +63,57 @@ def laws():
                 coeffs.append((name.decode(), rng.value.decode()))
             _laws[L.granfric_law_name(k).decode()] = (k, coeffs)
     return _laws
+
+
+def restitution_models():
+    """The core's table of normal restitution models: {name: (index, [(coefficient, range), ...],
+    whether the law's normal coefficient is NULL with it)}."""
+    global _models
+    if _models is None:
+        L, _models = lib(), {}
+        for k in range(L.granfric_restitution_count()):
+            coeffs = []
+            for m in range(L.granfric_restitution_ncoeff(k)):
+                rng = ctypes.c_char_p()
+                name = L.granfric_restitution_coeff(k, m, ctypes.byref(rng))
+                coeffs.append((name.decode(), rng.value.decode()))
+            _models[L.granfric_restitution_name(k).decode()] = (k, coeffs,
+                                                              bool(L.granfric_restitution_normal_null(k)))
+    return _models
+
+
+def viscoelastic_restitution(delta):
+    """E(delta): the normal restitution of viscoelastic spheres (core/viscoelastic.h), with
+    delta = A alpha^(2/5) v^(1/5) (E = 1 - 1.15344 delta + ... for small delta)."""
+    return lib().granfric_viscoelastic_restitution(float(delta))
+
+
+def _law_and_model(law, coeffs, restitution):
+    """(law index, coefficients, model index, model coefficients) for core calls: restitution is
+    None (the law's constant restitution) or (model name, [values]) as pair_coeff takes them
+    after the law's coefficients; with a model whose law coefficient is NULL, coeffs[0] may be
+    None."""
+    if restitution is None:
+        k, c = law_index(law, coeffs)
+        return k, c, -1, np.zeros(1)
+    name, values = restitution
+    table = restitution_models()
+    if name not in table:
+        raise ValueError(f"unknown restitution model {name!r} (known: {', '.join(table)})")
+    mk, names, null = table[name]
+    coeffs = list(coeffs)
+    if null:
+        if coeffs and coeffs[0] is not None:
+            raise ValueError(f"{name}: give the law's normal coefficient as None (the model sets it)")
+        coeffs[0] = lib().granfric_law_elastic_normal(laws()[law][0]) if law in laws() else 0.0
+    k, c = law_index(law, coeffs)
+    mc = np.array(values, dtype=float).ravel()
+    if mc.size != len(names):
+        raise ValueError(f"{name} takes {len(names)} values ({' '.join(n for n, _ in names)}), not {mc.size}")
+    bad = lib().granfric_restitution_check(mk, mc.ctypes.data_as(ctypes.POINTER(ctypes.c_double)))
+    if bad >= 0:
+        raise ValueError(f"{name}: {names[bad][0]} = {mc[bad]} is out of range ({names[bad][1]})")
+    return k, c, mk, mc
 
 
 def law_index(law, coeffs):
@@ -104,15 +166,17 @@ class Collision:
     energy_created: bool
 
 
-def collide(law, coeffs, b1, b2, n):
+def collide(law, coeffs, b1, b2, n, restitution=None):
     """Apply law ('rough' r beta | 'walton' r mu rtmax | 'jz' qn qt kappa_s kappa_d) to bodies
-    b1, b2 touching along unit normal n (from 2 to 1). Returns a Collision."""
-    k, c = law_index(law, coeffs)
+    b1, b2 touching along unit normal n (from 2 to 1); restitution: None, or a normal
+    restitution model as pair_coeff takes it, e.g. ('viscoelastic', [vref]) or
+    ('viscoelastic/material', [Y, nu, A]) (then coeffs[0] = None). Returns a Collision."""
+    k, c, mk, mc = _law_and_model(law, coeffs, restitution)
     a1, a2, nn = b1.array(), b2.array(), np.array(n, dtype=float)
     out = np.zeros(19)
     p = ctypes.POINTER(ctypes.c_double)
-    rc = lib().granfric_collide(k, c.ctypes.data_as(p), a1.ctypes.data_as(p),
-                                a2.ctypes.data_as(p), nn.ctypes.data_as(p), out.ctypes.data_as(p))
+    rc = lib().granfric_collide_model(k, c.ctypes.data_as(p), mk, mc.ctypes.data_as(p), a1.ctypes.data_as(p),
+                                      a2.ctypes.data_as(p), nn.ctypes.data_as(p), out.ctypes.data_as(p))
     if rc != 0:
         raise ValueError(f"invalid {law} coefficients {coeffs}")
     return Collision(out[0:3], out[3:6], out[6:9], out[9:12], out[12], out[13], out[14],
@@ -137,11 +201,12 @@ def mean_energy_changes(law, coeffs, q, dim, Ttr, Trot, n=20000, seed=1):
     return dict(zip(keys, (float(x) for x in out)))
 
 
-def collide_batch(law, coeffs, v1, w1, v2, w2, n, m=1.0, a=0.5, q=0.4, want_dE=False):
+def collide_batch(law, coeffs, v1, w1, v2, w2, n, m=1.0, a=0.5, q=0.4, want_dE=False, restitution=None):
     """Apply law (as in collide) in place to many contacts of equal particles (mass m, radius a,
     shape factor q): v1, w1, v2, w2 and the unit normals n (from 2 to 1) are (k, 3) float64
     C-contiguous arrays; the map is applied as given (select approaching pairs first). One C++
-    call for all k contacts. Returns the energy changes (k,) if want_dE, else None."""
+    call for all k contacts; restitution as in collide. Returns the energy changes (k,) if
+    want_dE, else None."""
     arrays = (v1, w1, v2, w2, n)
     k = len(v1)
     for x in arrays:
@@ -151,15 +216,15 @@ def collide_batch(law, coeffs, v1, w1, v2, w2, n, m=1.0, a=0.5, q=0.4, want_dE=F
     for x in arrays[:4]:
         if not x.flags.writeable:
             raise ValueError("collide_batch updates v1, w1, v2, w2 in place: they must be writeable")
-    law_k, c = law_index(law, coeffs)
+    law_k, c, mk, mc = _law_and_model(law, coeffs, restitution)
     dE = np.zeros(k) if want_dE else None
     d = ctypes.POINTER(ctypes.c_double)
-    f = lib().granfric_collide_batch
-    f.argtypes = [ctypes.c_int, d, ctypes.c_long, ctypes.c_double, ctypes.c_double,
+    f = lib().granfric_collide_batch_model
+    f.argtypes = [ctypes.c_int, d, ctypes.c_int, d, ctypes.c_long, ctypes.c_double, ctypes.c_double,
                   ctypes.c_double, d, d, d, d, d, d]
     f.restype = ctypes.c_int
     ptr = lambda x: x.ctypes.data_as(d) if x is not None else None
-    rc = f(law_k, ptr(c), k, m, a, q, *(ptr(x) for x in arrays), ptr(dE))
+    rc = f(law_k, ptr(c), mk, ptr(mc), k, m, a, q, *(ptr(x) for x in arrays), ptr(dE))
     if rc == -3:
         raise ValueError(f"invalid body m={m} a={a} q={q}")
     if rc != 0:

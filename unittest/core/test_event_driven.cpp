@@ -4,6 +4,7 @@
 // for every law, 2D and 3D, N = 2..500 and windows from 0.01 to 10 mean free times; conservation;
 // no overlaps; gravity; the TC model against inelastic collapse and the event cap without it.
 #include "ed_fixture.h"
+#include "core/law_table.h"
 
 #include "core/id_map.h"
 #include "core/kicks.h"
@@ -129,6 +130,34 @@ TEST(EventDriven, GravityEqualsReference)
     run.run(8 * mft, 0.7 * mft);
     ref.run_until(8 * mft);
     EXPECT_EQ(run.total.collisions, ref.collisions);
+    expect_same_state(ref, run, 1e-9);
+  }
+}
+
+// viscoelastic normal restitution (each collision's r from its normal speed), between particles
+// and at walls: event by event equal to the reference
+TEST(EventDriven, ViscoelasticEqualsReference)
+{
+  for (int dim = 2; dim <= 3; dim++) {
+    SystemSpec s;
+    s.n = 60;
+    s.dim = dim;
+    s.phi = 0.2;
+    s.seed = 91 + dim;
+    LawParams law = LawParams::walton(0.6, 0.4, 0.3);
+    const double vref = 0.5;
+    ASSERT_EQ(find_restitution("viscoelastic")->apply(law, &vref), nullptr);
+    Reference ref = make_system(s, law);
+    ref.periodic[1] = false;
+    ref.walls.push_back({1, -1, ref.lo.y - 0.6, law});
+    ref.walls.push_back({1, +1, ref.lo.y + ref.L.y + 0.6, law});
+    const double mft = mean_free_time(ref);
+    CoreRun run(ref);
+    run.run(8 * mft, 0.7 * mft);
+    ref.run_until(8 * mft);
+    EXPECT_GT(ref.wall_collisions, 5);
+    EXPECT_EQ(run.total.collisions, ref.collisions);
+    EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
     expect_same_state(ref, run, 1e-9);
   }
 }

@@ -6,6 +6,7 @@
 #include "core/energy_loss.h"
 #include "core/kicks.h"
 #include "core/law_table.h"
+#include "core/viscoelastic.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -14,14 +15,21 @@ using namespace granfric;
 
 extern "C" {
 
-// law: an index into the table of laws (core/law_table.h); -1: no such law, -2: coefficients
-// outside their ranges
-static int make_law(int law, const double *c, LawParams &p)
+// law: an index into the table of laws (core/law_table.h); model: an index into the table of
+// normal restitution models, or -1 for the law's constant restitution, with its coefficients mc
+// (a model whose law coefficient is NULL takes c[0] as given: pass the law's elastic value,
+// granfric_law_elastic_normal). -1: no such law, -2: coefficients outside their ranges, -4: no
+// such model, or its coefficients outside their ranges or not fitting the law's
+static int make_law(int law, const double *c, LawParams &p, int model = -1, const double *mc = nullptr)
 {
   if (law < 0 || law >= NLAWS) return -1;
   const LawSpec &s = law_spec(law);
   if (first_bad_coeff(s, c) >= 0) return -2;
   p = s.make(c);
+  if (model < 0) return 0;
+  if (model >= NRESTITUTION || !mc) return -4;
+  const RestitutionSpec &r = restitution_spec(model);
+  if (first_bad_restitution_coeff(r, mc) >= 0 || r.apply(p, mc)) return -4;
   return 0;
 }
 
@@ -64,6 +72,56 @@ const char *granfric_law_joint(int law)
   return law >= 0 && law < NLAWS ? law_spec(law).joint : nullptr;
 }
 
+// the value of law `law`'s first coefficient that makes the normal motion elastic (what a model
+// whose law coefficient is NULL takes); NaN for no such law
+double granfric_law_elastic_normal(int law)
+{
+  return law >= 0 && law < NLAWS ? law_spec(law).elastic_normal : 0.0 / 0.0;
+}
+
+// the table of normal restitution models: how many, model `model`'s name, number of
+// coefficients, coefficient k's name and range, whether the law's normal coefficient is NULL
+// with it, and whether coefficients mc are admissible (-1 if so, else the first that is not;
+// -2: no such model)
+int granfric_restitution_count()
+{
+  return NRESTITUTION;
+}
+
+const char *granfric_restitution_name(int model)
+{
+  return model >= 0 && model < NRESTITUTION ? restitution_spec(model).name : nullptr;
+}
+
+int granfric_restitution_ncoeff(int model)
+{
+  return model >= 0 && model < NRESTITUTION ? restitution_spec(model).ncoeff : -1;
+}
+
+const char *granfric_restitution_coeff(int model, int k, const char **range)
+{
+  if (model < 0 || model >= NRESTITUTION || k < 0 || k >= restitution_spec(model).ncoeff) return nullptr;
+  const LawCoeff &c = restitution_spec(model).coeff[k];
+  if (range) *range = c.range;
+  return c.name;
+}
+
+int granfric_restitution_normal_null(int model)
+{
+  return model >= 0 && model < NRESTITUTION ? (restitution_spec(model).normal_null ? 1 : 0) : -1;
+}
+
+int granfric_restitution_check(int model, const double *mc)
+{
+  return model >= 0 && model < NRESTITUTION ? first_bad_restitution_coeff(restitution_spec(model), mc) : -2;
+}
+
+// E(delta), the normal restitution of viscoelastic spheres (core/viscoelastic.h)
+double granfric_viscoelastic_restitution(double delta)
+{
+  return viscoelastic_restitution(delta);
+}
+
 // Monte Carlo mean energy changes per collision over Gaussian velocities (Ttr) and spins (Trot)
 // (energy_loss.h): out = {<dE_tr>, its s.e., <dE_rot>, its s.e., <dE>, its s.e., sliding}
 int granfric_mean_energy_changes(int law, const double *c, double q, int dim, double Ttr,
@@ -97,11 +155,12 @@ int granfric_mean_energy_loss(int law, const double *c, double q, int dim, doubl
 // c = qn, qt, kappa_s, kappa_d).
 // body = {vx,vy,vz, wx,wy,wz, m, a, q}; m2 = inf makes body 2 a wall.
 // out = {v1[3], w1[3], v2[3], w2[3], dE, gn, gt, cos_gamma, rt, sliding, energy_created} (19 values)
-int granfric_collide(int law, const double *c, const double *body1, const double *body2,
-                     const double *n, double *out)
+// model, mc: the normal restitution model (make_law; -1: the law's constant restitution)
+int granfric_collide_model(int law, const double *c, int model, const double *mc, const double *body1,
+                           const double *body2, const double *n, double *out)
 {
   LawParams p;
-  const int rc = make_law(law, c, p);
+  const int rc = make_law(law, c, p, model, mc);
   if (rc) return rc;
   auto body = [](const double *b) {
     Body o;
@@ -129,17 +188,24 @@ int granfric_collide(int law, const double *c, const double *body1, const double
   return 0;
 }
 
+// granfric_collide_model with the law's constant restitution
+int granfric_collide(int law, const double *c, const double *body1, const double *body2,
+                     const double *n, double *out)
+{
+  return granfric_collide_model(law, c, -1, nullptr, body1, body2, n, out);
+}
+
 // Batch form of granfric_collide for n contacts of equal particles (mass m, radius a, shape
 // factor q): the law is applied in place to v1, w1, v2, w2 (each n*3 doubles, pair k at 3k) with
 // unit normals nrm (n*3, from 2 to 1), as given (the caller selects approaching pairs). dE
 // (n doubles, may be null) receives the energy change of each collision. Used by the Monte Carlo
 // solution of the Boltzmann equation (tools/granfric/dsmc.py).
-int granfric_collide_batch(int law, const double *c, long n, double m, double a, double q,
-                           double *v1, double *w1, double *v2, double *w2, const double *nrm,
-                           double *dE)
+int granfric_collide_batch_model(int law, const double *c, int model, const double *mc, long n, double m,
+                                 double a, double q, double *v1, double *w1, double *v2, double *w2,
+                                 const double *nrm, double *dE)
 {
   LawParams p;
-  const int rc = make_law(law, c, p);
+  const int rc = make_law(law, c, p, model, mc);
   if (rc) return rc;
   if (!(m > 0.0 && m < INF && a > 0.0 && q > 0.0)) return -3;
   Body b1, b2;
@@ -160,6 +226,14 @@ int granfric_collide_batch(int law, const double *c, long n, double m, double a,
     if (dE) dE[k] = r.dE;
   }
   return 0;
+}
+
+// granfric_collide_batch with the law's constant restitution
+int granfric_collide_batch(int law, const double *c, long n, double m, double a, double q,
+                           double *v1, double *w1, double *v2, double *w2, const double *nrm,
+                           double *dE)
+{
+  return granfric_collide_batch_model(law, c, -1, nullptr, n, m, a, q, v1, w1, v2, w2, nrm, dE);
 }
 // Kick k of the core's random driving (core/kicks.h, as fix hardsphere/kick applies it) to n
 // particles with IDs tags, masses m, radii a and shape factor q, in place on their velocities v

@@ -3,6 +3,8 @@
 // GRANFRIC physics core: the collision map (Walton form, see collision.h and doc/conventions.rst).
 #include "collision.h"
 
+#include "viscoelastic.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -80,7 +82,19 @@ static void tangential(const LawParams &law, const Body &b1, const Body &b2, con
 // model's replacement) takes the normal part alone: its tangential impulse, its spin changes and
 // the tangential energy loss are exact zeros, so it gives the same numbers (up to the sign of a
 // zero) without the tangential arithmetic.
-Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Vec3 &n)
+LawParams LawParams::at_contact(double gn, const Body &b1, const Body &b2, double m_n) const
+{
+  LawParams p = *this;
+  double scale = visco;
+  if (visco_material) {
+    const double R = b2.is_wall() ? b1.a : b1.a * b2.a / (b1.a + b2.a);
+    scale *= std::pow(R, 0.2) * std::pow(m_n, -0.4);
+  }
+  p.r = viscoelastic_restitution(scale * std::pow(std::fabs(gn), 0.2));
+  return p;
+}
+
+Collision collide(const LawParams &given, const Body &b1, const Body &b2, const Vec3 &n)
 {
   const double im1 = inverse_mass(b1), im2 = inverse_mass(b2);
   const double m_n = 1.0 / (im1 + im2);
@@ -90,6 +104,9 @@ Collision collide(const LawParams &law, const Body &b1, const Body &b2, const Ve
   if (!b2.is_wall()) aw += b2.a * b2.w;
   const Vec3 g = b1.v - b2.v - cross(aw, n);
   const double gn = dot(g, n);
+  LawParams at_speed;
+  if (given.visco > 0.0) at_speed = given.at_contact(gn, b1, b2, m_n);
+  const LawParams &law = given.visco > 0.0 ? at_speed : given;
   const Vec3 g_t = g - gn * n;
   const double gt2 = norm2(g_t);
   // (|g_t| without the square where that overflows: a contact point faster than 1e154)

@@ -20,18 +20,27 @@ constexpr double INF = std::numeric_limits<double>::infinity();
 
 enum class LawKind { ROUGH, WALTON, JZ };
 
+struct Body;
+
 // Coefficients of one collision law (one type pair, or particle-wall), as the table of laws
 // (law_table.h) makes them from a user's coefficients.
 // All three laws share one map (Walton's with a static and a dynamic friction coefficient):
 //   rough : r, rt_max = beta, mu_s = mu_d = inf (constant tangential restitution)
 //   walton: r, rt_max, mu_s = mu_d = mu
 //   jz    : r = 1 - 2 q_n, rt_max = 1 - 2 q_t, mu_s = kappa_s, mu_d = kappa_d
+// Any of them may take a viscoelastic normal restitution instead of the constant r
+// (viscoelastic.h): visco > 0 gives r = E(delta) at each collision, with
+//   delta = visco |g_n|^(1/5)                                    (visco_material false), or
+//   delta = visco R_eff^(1/5) m_eff^(-2/5) |g_n|^(1/5)           (visco_material true),
+// R_eff and m_eff the pair's reduced radius and mass (a wall: the particle's own).
 struct LawParams {
   LawKind kind = LawKind::ROUGH;
   double r = 1.0;
   double rt_max = -1.0;
   double mu_s = INF;
   double mu_d = INF;
+  double visco = 0.0;
+  bool visco_material = false;
 
   static LawParams rough(double r, double beta) { return {LawKind::ROUGH, r, beta, INF, INF}; }
   static LawParams walton(double r, double mu, double rt_max)
@@ -53,7 +62,13 @@ struct LawParams {
   bool smooth() const { return rt_max == -1.0 && mu_s == INF; }
   // does every collision conserve the kinetic energy? (elastic normal motion, and a tangential
   // motion that is either untouched or reversed without a Coulomb limit)
-  bool conserves_energy() const { return r == 1.0 && mu_s == INF && (rt_max == -1.0 || rt_max == 1.0); }
+  bool conserves_energy() const
+  {
+    return r == 1.0 && visco == 0.0 && mu_s == INF && (rt_max == -1.0 || rt_max == 1.0);
+  }
+  // the law of a collision with normal contact velocity gn between b1 and b2: itself, or with the
+  // viscoelastic restitution at that speed as r
+  LawParams at_contact(double gn, const Body &b1, const Body &b2, double m_n) const;
 
   // Every field, in one fixed order: f(name, field of s...) for each, with the fields of every s
   // given by reference (EDOptions::each_field)
@@ -61,7 +76,7 @@ struct LawParams {
   static void each_field(F &&f, S &...s)
   {
     f("kind", s.kind...), f("r", s.r...), f("rt_max", s.rt_max...), f("mu_s", s.mu_s...);
-    f("mu_d", s.mu_d...);
+    f("mu_d", s.mu_d...), f("visco", s.visco...), f("visco_material", s.visco_material...);
   }
 };
 
