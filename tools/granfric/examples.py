@@ -35,6 +35,9 @@ SHORT = [
     ("convection", "in.convection", "convection", {"periods": 1000}),
     ("shear", "in.shear2d", "shear2d", {"nside": 32, "trelax": 200, "tavg": 800}),
     ("shear", "in.shear3d", "shear3d", {"nside": 10, "trelax": 200, "tavg": 800}),
+    ("couette", "in.couette2d", "couette2d", {"trelax": 400, "tavg": 4000, "nblock": 4}),
+    ("couette", "in.couette3d", "couette3d", {"trelax": 200, "tavg": 2000, "nblock": 4}),
+    ("convection3d", "in.convection3d", "convection3d", {"periods": 500}),
 ]
 RANKS = (1, 2)
 
@@ -61,6 +64,13 @@ TOL = {
                 "v_pxy": None, "f_ed[2]": 0.05},
     "shear3d": {"c_T[1]": 0.5, "c_T[2]": 0.5, "c_T[3]": 0.3, "v_pxx": 0.5, "v_pyy": 0.5,
                 "v_pxy": None, "f_ed[2]": 0.05},
+    "couette2d": {"c_Tp": 0.3, "f_th[1]": None, "f_th[2]": None, "f_th[3]": None, "f_th[4]": None,
+                  "f_ed[2]": 0.05, "f_blk[1]": 0.3, "f_blk[2]": 0.5, "f_blk[3]": 0.5, "f_blk[4]": 0.3},
+    "couette3d": {"c_Tp": 0.2, "f_th[1]": None, "f_th[2]": None, "f_th[3]": None, "f_th[4]": None,
+                  "f_ed[2]": 0.05, "f_blk[1]": 0.2, "f_blk[2]": 0.3, "f_blk[3]": 0.2, "f_blk[4]": 0.2},
+    "convection3d": {"c_psi[1]": None, "c_psi[2]": None, "c_psi[3]": None, "c_psi[4]": None,
+                     "v_zcm": 0.05, "c_T[1]": 0.05, "c_T[2]": 0.2, "f_ed[2]": 0.05,
+                     "f_ed[10]": 0.05, "f_ed[7]": 0.2},
 }
 EXACT = 1e-10     # the first row of the run: the initial state, no dynamics yet
 

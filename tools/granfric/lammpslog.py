@@ -66,3 +66,15 @@ def block_mean(x, nblocks=4):
     means = np.array([b.mean() for b in np.array_split(x, nblocks) if len(b)])
     err = float(means.std(ddof=1) / np.sqrt(len(means))) if len(means) > 1 else float("nan")
     return float(x.mean()), err
+
+
+def steady_line(path):
+    """The closing line 'steady: name value name value ...' that an example prints (print
+    command) as a dict of floats ('collisions/(particle time)' is read as 'coll')."""
+    with open(path) as f:
+        for line in f:
+            line = line.strip()
+            if line.startswith("steady: "):
+                w = line[len("steady: "):].replace("collisions/(particle time)", "coll").split()
+                return {w[k]: float(w[k + 1]) for k in range(0, len(w), 2)}
+    raise ValueError("no steady state line in " + path)

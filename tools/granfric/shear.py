@@ -15,7 +15,6 @@ report.md (the table, the DSMC values and the relative deviations) and shear.png
 to the steady state, and the steady state against the box size).
 """
 import os
-import re
 
 import numpy as np
 
@@ -24,18 +23,11 @@ from . import cli, cooling, lammpslog, lmp, usf
 EXAMPLES = {2: os.path.join(lmp.ROOT, "examples", "shear", "in.shear2d"),
             3: os.path.join(lmp.ROOT, "examples", "shear", "in.shear3d")}
 LAW, COEFFS, RATE = "rough", (0.9, 0.0), 0.05
-STEADY = re.compile(r"^steady: (.*)$")
 
 
 def steady(log):
     """The example's closing line: T_tr, T_rot, Pxx, Pyy, Pxy, collisions, n, rate, phi"""
-    with open(log) as f:
-        for line in f:
-            m = STEADY.match(line.strip())
-            if m:
-                w = m.group(1).replace("collisions/(particle time)", "coll").split()
-                return {w[k]: float(w[k + 1]) for k in range(0, len(w), 2)}
-    raise ValueError("no steady state line in " + log)
+    return lammpslog.steady_line(log)
 
 
 def reduced(s, dim):

@@ -139,11 +139,7 @@ TEST(EventDriven, GravityEqualsReference)
 TEST(EventDriven, ViscoelasticEqualsReference)
 {
   for (int dim = 2; dim <= 3; dim++) {
-    SystemSpec s;
-    s.n = 60;
-    s.dim = dim;
-    s.phi = 0.2;
-    s.seed = 91 + dim;
+    const SystemSpec s = spec_of(60, dim, 0.2, 91 + dim);
     LawParams law = LawParams::walton(0.6, 0.4, 0.3);
     const double vref = 0.5;
     ASSERT_EQ(find_restitution("viscoelastic")->apply(law, &vref), nullptr);
