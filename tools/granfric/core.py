@@ -183,19 +183,20 @@ def collide(law, coeffs, b1, b2, n, restitution=None):
                      out[15], out[16], bool(out[17]), bool(out[18]))
 
 
-def mean_energy_changes(law, coeffs, q, dim, Ttr, Trot, n=20000, seed=1):
+def mean_energy_changes(law, coeffs, q, dim, Ttr, Trot, n=20000, seed=1, restitution=None):
     """Monte Carlo, in the C++ core, of the mean translational and rotational energy changes per
     collision of equal particles (m = 1): Gaussian velocities at Ttr, spins with I<w^2> = Trot,
-    collisions weighted by the normal relative speed. Returns a dict with tr, tr_se, rot, rot_se,
-    total, total_se, sliding."""
-    k, c = law_index(law, coeffs)
+    collisions weighted by the normal relative speed; restitution as in collide. Returns a dict
+    with tr, tr_se, rot, rot_se, total, total_se, sliding."""
+    k, c, mk, mc = _law_and_model(law, coeffs, restitution)
     out = np.zeros(7)
-    f = lib().granfric_mean_energy_changes
+    f = lib().granfric_mean_energy_changes_model
     d = ctypes.POINTER(ctypes.c_double)
-    f.argtypes = [ctypes.c_int, d, ctypes.c_double, ctypes.c_int, ctypes.c_double,
+    f.argtypes = [ctypes.c_int, d, ctypes.c_int, d, ctypes.c_double, ctypes.c_int, ctypes.c_double,
                   ctypes.c_double, ctypes.c_long, ctypes.c_ulong, d]
     f.restype = ctypes.c_int
-    if f(k, c.ctypes.data_as(d), q, dim, Ttr, Trot, n, seed, out.ctypes.data_as(d)) != 0:
+    if f(k, c.ctypes.data_as(d), mk, mc.ctypes.data_as(d), q, dim, Ttr, Trot, n, seed,
+         out.ctypes.data_as(d)) != 0:
         raise ValueError(f"invalid {law} coefficients {coeffs}")
     keys = ("tr", "tr_se", "rot", "rot_se", "total", "total_se", "sliding")
     return dict(zip(keys, (float(x) for x in out)))

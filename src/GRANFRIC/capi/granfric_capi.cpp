@@ -123,17 +123,26 @@ double granfric_viscoelastic_restitution(double delta)
 }
 
 // Monte Carlo mean energy changes per collision over Gaussian velocities (Ttr) and spins (Trot)
-// (energy_loss.h): out = {<dE_tr>, its s.e., <dE_rot>, its s.e., <dE>, its s.e., sliding}
-int granfric_mean_energy_changes(int law, const double *c, double q, int dim, double Ttr,
-                                 double Trot, long n, unsigned long seed, double *out)
+// (energy_loss.h): out = {<dE_tr>, its s.e., <dE_rot>, its s.e., <dE>, its s.e., sliding};
+// model, mc: the normal restitution model (make_law)
+int granfric_mean_energy_changes_model(int law, const double *c, int model, const double *mc, double q,
+                                       int dim, double Ttr, double Trot, long n, unsigned long seed,
+                                       double *out)
 {
   LawParams p;
-  const int rc = make_law(law, c, p);
+  const int rc = make_law(law, c, p, model, mc);
   if (rc) return rc;
   const EnergyLossResult r = mean_energy_changes(p, q, dim, Ttr, Trot, n, seed);
   const double v[7] = {r.mean_tr, r.stderr_tr, r.mean_rot, r.stderr_rot, r.mean, r.stderr_, r.sliding};
   for (int k = 0; k < 7; k++) out[k] = v[k];
   return 0;
+}
+
+// granfric_mean_energy_changes_model with the law's constant restitution
+int granfric_mean_energy_changes(int law, const double *c, double q, int dim, double Ttr,
+                                 double Trot, long n, unsigned long seed, double *out)
+{
+  return granfric_mean_energy_changes_model(law, c, -1, nullptr, q, dim, Ttr, Trot, n, seed, out);
 }
 
 // Monte Carlo <dE> per collision of equal particles over a Maxwellian at T0 (energy_loss.h):
