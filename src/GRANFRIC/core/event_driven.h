@@ -39,7 +39,8 @@
 //   wall_motion.cpp      wall motion and wall contact times; wall_response.cpp: the response at
 //                        walls
 //   statistics.cpp       statistics, tallies and records of the collisions
-// The collision laws are collision.h, their table law_table.h, driving by kicks kicks.h.
+// The collision laws are collision.h, their table law_table.h (with the normal restitution
+// models; the viscoelastic one is viscoelastic.h), driving by kicks kicks.h.
 #ifndef GRANFRIC_CORE_EVENT_DRIVEN_H
 #define GRANFRIC_CORE_EVENT_DRIVEN_H
 
