@@ -96,12 +96,14 @@ KEYS = ("Ttr", "Trot", "R", "corr", "a2_v", "a2_w", "collisions")
 
 
 def run(r, beta, dim, phi, times, N=20000, T0=1.0, Trot0=0.0, q=None, a=0.5, m=1.0, seed=1,
-        eps=None, law="rough", coeffs=None, state=None):
+        eps=None, law="rough", coeffs=None, state=None, restitution=None):
     """One DSMC run from a Maxwellian at T_tr = T0 (zero total momentum, exactly T0) and spins
     Maxwellian at Trot0 (0: no spin, the state of the ED scene at t = 0), or from state = (v, w)
     ((N, 3) arrays, 2D: v_z = w_x = w_y = 0). The law is 'rough' (r, beta) unless law/coeffs say
-    otherwise (any law of core.collide). Returns a dict of arrays at times (KEYS; collisions:
-    collisions per particle since t = times[0]) and the final state (v, w)."""
+    otherwise (any law of core.collide); restitution: a normal restitution model as
+    core.collide_batch takes it (None: the law's constant r), e.g. ("viscoelastic", [vref]).
+    Returns a dict of arrays at times (KEYS; collisions: collisions per particle since
+    t = times[0]) and the final state (v, w)."""
     q = SHAPE[dim] if q is None else q
     eps = EPS if eps is None else eps
     coeffs = (r, beta) if coeffs is None else coeffs
@@ -159,7 +161,8 @@ def run(r, beta, dim, phi, times, N=20000, T0=1.0, Trot0=0.0, q=None, a=0.5, m=1
             i, j, g = i[acc], j[acc], g[acc]
             nrm = sample_normals(g, dim, rng)
             v1, w1, v2, w2 = v[i], w[i], v[j], w[j]    # copies (fancy indexing)
-            core.collide_batch(law, coeffs, v1, w1, v2, w2, nrm, m=m, a=a, q=q)
+            core.collide_batch(law, coeffs, v1, w1, v2, w2, nrm, m=m, a=a, q=q,
+                               restitution=restitution)
             v[i], w[i], v[j], w[j] = v1, w1, v2, w2      # pairs are disjoint
             ncoll += len(i)
         o = observables(v, w, dim, m, I)

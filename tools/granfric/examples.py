@@ -38,6 +38,7 @@ SHORT = [
     ("couette", "in.couette2d", "couette2d", {"trelax": 400, "tavg": 4000, "nblock": 4}),
     ("couette", "in.couette3d", "couette3d", {"trelax": 200, "tavg": 2000, "nblock": 4}),
     ("convection3d", "in.convection3d", "convection3d", {"periods": 500}),
+    ("viscoelastic", "in.cooling_ve", "cooling_ve", {"nside": 10, "nrun": 5}),
 ]
 RANKS = (1, 2)
 
@@ -71,6 +72,7 @@ TOL = {
     "convection3d": {"c_psi[1]": None, "c_psi[2]": None, "c_psi[3]": None, "c_psi[4]": None,
                      "v_zcm": 0.05, "c_T[1]": 0.05, "c_T[2]": 0.2, "f_ed[2]": 0.05,
                      "f_ed[10]": 0.05, "f_ed[7]": 0.2},
+    "cooling_ve": {"c_T[1]": 0.2, "f_ed[2]": 0.02, "c_C[1]": None, "v_flowfrac": None},
 }
 EXACT = 1e-10     # the first row of the run: the initial state, no dynamics yet
 

@@ -39,7 +39,7 @@ def test_example_matches_its_reference_log(entry, np, tmp_path):
 CHANGED = [("cooling2d", {"r": 0.8}), ("cooling3d", {"r": 0.8}), ("driven", {"r": 0.85}),
            ("compaction", {"q": 0.05}), ("convection", {"q": 0.02}), ("shear2d", {"r": 0.8}),
            ("shear3d", {"r": 0.8}), ("couette2d", {"r": 0.9}), ("couette3d", {"r": 0.9}),
-           ("convection3d", {"q": 0.02})]
+           ("convection3d", {"q": 0.02}), ("cooling_ve", {"r": 0.6})]
 
 
 @pytest.mark.parametrize("name,change", CHANGED, ids=[c[0] for c in CHANGED])
