@@ -1148,8 +1148,6 @@ TEST_F(FixErrors, Wall)
                    "amplitude A = 0 must be > 0");
   EXPECT_LMP_ERROR(l.get(), "fix w13 all hardsphere/wall ylo EDGE vibrate parabolic 0.1 -1",
                    "angular frequency = -1 must be > 0");
-  EXPECT_LMP_ERROR(l.get(), "fix w14 all hardsphere/wall yhi EDGE vibrate parabolic 0.1 10",
-                   "for lower walls \\(xlo, ylo, zlo\\) only");
   EXPECT_LMP_ERROR(l.get(), "fix w15 all hardsphere/wall ylo EDGE vibrate parabolic 0.1",
                    "Illegal fix hardsphere/wall vibrate sine\\|parabolic A omega");
   EXPECT_LMP_ERROR(l.get(), "fix w16 all hardsphere/wall ylo EDGE vibrate parabolic 0.1 10 thermal 1 5",
