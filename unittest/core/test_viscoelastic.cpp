@@ -65,7 +65,7 @@ TEST(Viscoelastic, SmallDeltaSeries)
 }
 
 // the table (cubic interpolation in sqrt(delta)) within 2e-11 of the integration, midway
-// between its points and at random places; past its end, the integration itself
+// between its points and at random places; the table in ln delta within 5e-9 relatively
 TEST(Viscoelastic, TableAgreesWithTheIntegration)
 {
   std::mt19937_64 gen(5);
@@ -76,7 +76,28 @@ TEST(Viscoelastic, TableAgreesWithTheIntegration)
     worst = std::max(worst, std::fabs(viscoelastic_restitution(s * s) - viscoelastic_restitution_exact(s * s)));
   }
   EXPECT_LT(worst, 2e-11);
-  EXPECT_EQ(viscoelastic_restitution(100.0), viscoelastic_restitution_exact(100.0));
+  // the table of ln E from delta = 64 to 1e4, relatively
+  worst = 0.0;
+  for (int k = 0; k < 100; k++) {
+    const double d = 64.0 * std::pow(1e4 / 64.0, (k + 0.37) / 100.0);
+    worst = std::max(worst, std::fabs(viscoelastic_restitution(d) / viscoelastic_restitution_exact(d) - 1.0));
+  }
+  EXPECT_LT(worst, 5e-9);
+}
+
+// strongly damped: E delta^(5/3) tends to a constant (1.31036), which E follows past 1e4, where
+// it is smooth and the integration no longer resolves it; the continuation is continuous
+TEST(Viscoelastic, StronglyDampedAsymptote)
+{
+  const double c3 = viscoelastic_restitution_exact(3e3) * std::pow(3e3, 5.0 / 3.0);
+  const double c4 = viscoelastic_restitution_exact(1e4) * std::pow(1e4, 5.0 / 3.0);
+  EXPECT_NEAR(c4, 1.31036, 1e-5);
+  EXPECT_NEAR(c3 / c4, 1.0, 1e-4);
+  for (double d : {2e4, 1e6, 1e12})
+    EXPECT_NEAR(viscoelastic_restitution(d) * std::pow(d, 5.0 / 3.0) / c4, 1.0, 1e-9) << d;
+  EXPECT_NEAR(viscoelastic_restitution(std::nextafter(1e4, 1e5)) / viscoelastic_restitution(1e4), 1.0, 1e-12);
+  EXPECT_NEAR(viscoelastic_restitution(std::nextafter(64.0, 0.0)) / viscoelastic_restitution(64.0), 1.0, 1e-9);
+  EXPECT_NEAR(viscoelastic_restitution(viscoelastic_delta(1e-12)), 1e-12, 1e-24);
 }
 
 TEST(Viscoelastic, DecreasingAndInverted)

@@ -105,32 +105,43 @@ namespace {
     return std::max(0.0, -y.v);    // (not reached)
   }
 
-  // the table: E at s = sqrt(delta) = k SMAX / N, k = 0 .. N
-  constexpr int N = 4096;
-  constexpr double SMAX = 8.0;
-  const std::vector<double> &table()
+  // cubic (4-point Lagrange) interpolation of table e (points 0 .. n, uniform) at u in points
+  double lagrange(const std::vector<double> &e, int n, double u)
   {
-    static const std::vector<double> t = [] {
-      std::vector<double> e(N + 1);
-      for (int k = 0; k <= N; k++) {
-        const double s = k * (SMAX / N);
-        e[k] = integrate(s * s);
-      }
-      return e;
-    }();
-    return t;
-  }
-
-  // cubic (4-point Lagrange) interpolation of the table at s in [0, SMAX]
-  double interpolate(double s)
-  {
-    const std::vector<double> &e = table();
-    const double u = s * (N / SMAX);
-    const int j0 = std::min(std::max((int) std::floor(u) - 1, 0), N - 3);
+    const int j0 = std::min(std::max((int) std::floor(u) - 1, 0), n - 3);
     const double p = u - j0;    // in [0, 3]
     const double l0 = -(p - 1) * (p - 2) * (p - 3) / 6.0, l1 = p * (p - 2) * (p - 3) / 2.0;
     const double l2 = -p * (p - 1) * (p - 3) / 2.0, l3 = p * (p - 1) * (p - 2) / 6.0;
     return l0 * e[j0] + l1 * e[j0 + 1] + l2 * e[j0 + 2] + l3 * e[j0 + 3];
+  }
+
+  // Two tables: E at s = sqrt(delta) = k SMAX / N (k = 0 .. N), where E is a smooth function
+  // of s, and ln E at ln delta from ln(SMAX^2) to ln(DMAX) in NL steps, where ln E is a smooth,
+  // nearly straight function of ln delta. Past DMAX, E = E(DMAX) (DMAX/delta)^(5/3): the
+  // strongly damped collision's asymptote (E delta^(5/3) = 1.31013, 1.31033, 1.31036 at
+  // delta = 1e3, 3e3, 1e4).
+  constexpr int N = 4096, NL = 512;
+  constexpr double SMAX = 8.0, DMAX = 1e4;
+  struct Tables {
+    std::vector<double> e, lne;
+    double lo, step;    // ln delta at the log table's first point, and its spacing
+  };
+  const Tables &tables()
+  {
+    static const Tables t = [] {
+      Tables r;
+      r.e.resize(N + 1);
+      for (int k = 0; k <= N; k++) {
+        const double s = k * (SMAX / N);
+        r.e[k] = integrate(s * s);
+      }
+      r.lo = std::log(SMAX * SMAX);
+      r.step = (std::log(DMAX) - r.lo) / NL;
+      r.lne.resize(NL + 1);
+      for (int k = 0; k <= NL; k++) r.lne[k] = std::log(integrate(std::exp(r.lo + k * r.step)));
+      return r;
+    }();
+    return t;
   }
 
 }    // namespace
@@ -143,9 +154,11 @@ double viscoelastic_restitution_exact(double delta)
 double viscoelastic_restitution(double delta)
 {
   if (!(delta > 0.0)) return 1.0;
+  const Tables &t = tables();
   const double s = std::sqrt(delta);
-  if (s >= SMAX) return integrate(delta);
-  return interpolate(s);
+  if (s < SMAX) return lagrange(t.e, N, s * (N / SMAX));
+  if (delta <= DMAX) return std::exp(lagrange(t.lne, NL, (std::log(delta) - t.lo) / t.step));
+  return std::exp(t.lne[NL]) * std::pow(DMAX / delta, 5.0 / 3.0);
 }
 
 double viscoelastic_delta(double e)

@@ -18,10 +18,12 @@
 // do not pull on each other): E = -x' then. For small delta, E = 1 - C1 delta + C2 delta^2 - ...
 // with C1 = 1.15344 and C2 = 0.79826 (the literature's series; tested in unittest/core).
 //
-// E is computed once per process on a table uniform in s = sqrt(delta) (E is a smooth function of
-// s) by an adaptive Dormand-Prince integration of the equation above, and read from it with
-// cubic interpolation; past the table's end the equation is integrated for the value asked.
-// The same numbers on every rank and host (the table's arithmetic is the same everywhere).
+// E is computed once per process by an adaptive Dormand-Prince integration of the equation
+// above, on a table uniform in s = sqrt(delta) up to delta = 64 (E is a smooth function of s
+// there) and a table of ln E uniform in ln delta from 64 to 1e4, each read with cubic
+// interpolation; past 1e4 (E < 3e-7) E follows the strongly damped asymptote E ~ delta^(-5/3)
+// from its value at 1e4. The same numbers on every rank and host (the tables' arithmetic is the
+// same everywhere).
 #ifndef GRANFRIC_CORE_VISCOELASTIC_H
 #define GRANFRIC_CORE_VISCOELASTIC_H
 
@@ -29,7 +31,7 @@ namespace granfric {
 
 // E(delta) for delta >= 0 (1 at delta = 0, decreasing toward 0)
 double viscoelastic_restitution(double delta);
-// E(delta) integrated afresh (the table's values; for tests)
+// E(delta) integrated afresh (the tables' values; for tests, up to delta = 1e4)
 double viscoelastic_restitution_exact(double delta);
 // the delta with E(delta) = e, for 0 < e <= 1 (0 at e = 1)
 double viscoelastic_delta(double e);
