@@ -78,10 +78,7 @@ static void tangential(const LawParams &law, const Body &b1, const Body &b2, con
   c.dE = c.dE - 0.5 * (m_t * s * gt) * (2.0 - s) * gt;
 }
 
-// A smooth law (rt = -1 whatever the contact, no Coulomb limit: rough with beta = -1, and the TC
-// model's replacement) takes the normal part alone: its tangential impulse, its spin changes and
-// the tangential energy loss are exact zeros, so it gives the same numbers (up to the sign of a
-// zero) without the tangential arithmetic.
+// the law with the viscoelastic restitution at normal contact velocity gn (collision.h)
 LawParams LawParams::at_contact(double gn, const Body &b1, const Body &b2, double m_n) const
 {
   LawParams p = *this;
@@ -94,6 +91,10 @@ LawParams LawParams::at_contact(double gn, const Body &b1, const Body &b2, doubl
   return p;
 }
 
+// A smooth law (rt = -1 whatever the contact, no Coulomb limit: rough with beta = -1, and the TC
+// model's replacement) takes the normal part alone: its tangential impulse, its spin changes and
+// the tangential energy loss are exact zeros, so it gives the same numbers (up to the sign of a
+// zero) without the tangential arithmetic.
 Collision collide(const LawParams &given, const Body &b1, const Body &b2, const Vec3 &n)
 {
   const double im1 = inverse_mass(b1), im2 = inverse_mass(b2);
