@@ -107,6 +107,7 @@ void PairHardsphere::settings(int narg, char **arg)
   qshape = 0.4;
   inertia_style = SPHERE;
   type_shapes.clear();
+  qtype.clear();
   const std::string who = "Pair style " + law_style(lawkind);
   int iarg = 0;
   while (iarg < narg) {
@@ -158,9 +159,21 @@ bool PairHardsphere::type_range(const std::string &text, int ntypes, int &lo, in
   return lo >= 1 && lo <= hi && hi <= ntypes;
 }
 
+// the shape factor of each type from inertia and inertia/type (at init_style)
+void PairHardsphere::resolve_shapes()
+{
+  qtype.assign(atom->ntypes + 1, qshape);
+  for (const auto &s : type_shapes) {
+    int lo, hi;
+    if (type_range(s.types, atom->ntypes, lo, hi))
+      for (int t = lo; t <= hi; t++) qtype[t] = s.q;
+  }
+}
+
 double PairHardsphere::shape_factor(int itype) const
 {
-  double q = qshape;
+  if (itype < (int) qtype.size()) return qtype[itype];
+  double q = qshape;    // (before init_style: from the keywords)
   for (const auto &s : type_shapes) {
     int lo, hi;
     if (type_range(s.types, atom->ntypes, lo, hi) && itype >= lo && itype <= hi) q = s.q;
@@ -351,6 +364,7 @@ void PairHardsphere::init_style()
       error->all(FLERR, "Pair style {} inertia/type {} disc requires a 2d simulation (dimension 2)",
                  law_style(lawkind), s.types);
   }
+  resolve_shapes();
 
   // no neighbor list: fix hardsphere/ed finds partners with its own cell grid, and compute
   // pair/local requests an occasional list of its own
@@ -458,6 +472,7 @@ void PairHardsphere::read_restart_settings(GRANFRIC_RESTART_ARGS)
   if (comm->me == 0 && restart_format > 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
   MPI_Bcast(&n, 1, MPI_INT, 0, world);
   type_shapes.assign(n, TypeShape());
+  qtype.clear();
   for (auto &t : type_shapes) {
     int len = 0, disc = 0;
     if (comm->me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);

@@ -90,6 +90,7 @@ class PairHardsphere : public Pair {
     bool disc;
   };
   std::vector<TypeShape> type_shapes;
+  std::vector<double> qtype;    // the shape factor per type, resolved at init_style
   double ***raw;                  // raw pair_coeff values per type pair, for write_data/restart
   granfric::LawParams **params;   // law per type pair
   double *onerad, *maxrad;        // largest radius per type, locally and globally
@@ -98,6 +99,7 @@ class PairHardsphere : public Pair {
 
   void allocate();
   static bool type_range(const std::string &text, int ntypes, int &lo, int &hi);
+  void resolve_shapes();
   void set_law(int i, int j);
   void mix(int i, int j);
 };
