@@ -86,6 +86,11 @@ namespace hardsphere {
   bool ShearWrap::match(const double *b, double bvx, const double *w, double wvx, int *k, double *c,
                         double &cvx) const
   {
+    if (b[0] == w[0] && b[1] == w[1] && b[2] == w[2] && bvx == wvx) {    // (as written: no wrap)
+      for (int d = 0; d < 3; d++) k[d] = 0, c[d] = w[d];
+      cvx = wvx;
+      return true;
+    }
     if (!wrap.match(1, b[1], w[1], k[1], c[1]) || !wrap.match(2, b[2], w[2], k[2], c[2])) return false;
     // (the y wrap's x velocity: as pbc() changes it, as match() gave it before, or unchanged:
     // Domain::remap(), which wraps every atom into the box when fix deform flips it, leaves

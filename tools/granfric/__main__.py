@@ -6,6 +6,7 @@
     /usr/bin/python3 tools/granfric collisions [--out DIR]
     /usr/bin/python3 tools/granfric shear [--quick|--full] [--out DIR]
     /usr/bin/python3 tools/granfric usf [--quick|--full] [--out DIR]
+    /usr/bin/python3 tools/granfric usf_grad [--quick|--full] [--out DIR]
     /usr/bin/python3 tools/granfric convection --kappas K1 K2 ... [--q Q] [--g G] [--periods P]
 (the same as PYTHONPATH=tools /usr/bin/python3 -m granfric ..., or tools/reproduce PAPER)
 
@@ -39,7 +40,7 @@ def main(argv=None):
         print("reproduce PAPER [--quick|--full] [--out DIR]: the figures and report of one paper "
               "(" + ", ".join(PAPERS) + "); PAPER --help lists its options")
         return 0
-    if argv and argv[0] in ("reproduce", "convection", "collisions", "shear", "usf"):
+    if argv and argv[0] in ("reproduce", "convection", "collisions", "shear", "usf", "usf_grad"):
         from .cli import require_deps
         if require_deps():
             return 2
@@ -63,10 +64,10 @@ def main(argv=None):
     if argv and argv[0] == "collisions":
         from . import collision_demo
         return collision_demo.main(argv[1:])
-    if argv and argv[0] in ("shear", "usf"):
-        from . import shear, usf
+    if argv and argv[0] in ("shear", "usf", "usf_grad"):
+        from . import shear, usf, usf_grad
         rest = argv[1:] + ([] if "--out" in argv else ["--out", f"out/{argv[0]}"])
-        return (shear if argv[0] == "shear" else usf).main(rest)
+        return {"shear": shear, "usf": usf, "usf_grad": usf_grad}[argv[0]].main(rest)
     sys.stderr.write((f"unknown command {argv[0]}\n\n" if argv else "") + __doc__ + "\n")
     return 2
 

@@ -81,3 +81,11 @@ def write_rows(path, rows, float_format=None):
             w.writerow({k: (float_format.format(v) if float_format and isinstance(v, float) else v)
                         for k, v in r.items()})
     return path
+
+
+def write_report(out, lines):
+    """lines as out/report.md (out made if missing), and on standard output"""
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "report.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("\n".join(lines))

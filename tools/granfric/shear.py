@@ -2,8 +2,8 @@
 # Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 """Simple shear (examples/shear): the event-driven runs of examples/shear/in.shear2d (discs) and
 in.shear3d (spheres) in steady uniform shear flow against the kinetic theory (granfric.usf, DSMC
-of the Enskog-Boltzmann equation), and how the steady state departs from the homogeneous one as
-the box grows.
+of the Enskog-Boltzmann equation; granfric.usf_grad, Grad's moment theory), and how the steady
+state departs from the homogeneous one as the box grows.
 
     PYTHONPATH=tools /usr/bin/python3 -m granfric shear [--quick|--full] [--out DIR]
 
@@ -18,7 +18,7 @@ import os
 
 import numpy as np
 
-from . import cli, cooling, lammpslog, lmp, usf
+from . import cli, cooling, lammpslog, lmp, usf, usf_grad
 
 EXAMPLES = {2: os.path.join(lmp.ROOT, "examples", "shear", "in.shear2d"),
             3: os.path.join(lmp.ROOT, "examples", "shear", "in.shear3d")}
@@ -47,6 +47,16 @@ def theory(dim, phi, N, runs):
     return reduced(s, dim), m, se
 
 
+def grad(dim, phi):
+    """Grad's theory (granfric.usf_grad: Boltzmann limit, the kinetic stress only) in the form of
+    reduced(): its a* gives T_tr through nu(T_tr) = a / a*; collisions at the rate nu"""
+    g = usf_grad.grad(LAW, COEFFS, dim)
+    T = (RATE / (g["a_star"] * cooling.collision_frequency(1.0, phi, 0.5, 1.0, dim))) ** 2
+    P = g["P_star"]
+    return {"T_tr": T, "a*": g["a_star"], "P*xx": P[0, 0], "P*yy": P[1, 1], "P*xy": P[0, 1], "R": g["R"],
+            "coll/nu": 1.0}
+
+
 def run_example(work, dim, phi, nside, tavg, seed=4321):
     log = os.path.join(work, f"log.{dim}d.phi{phi}.n{nside}.s{seed}")
     lmp.run(EXAMPLES[dim], {"phi": phi, "nside": nside, "tavg": tavg, "seed": seed}, cwd=work, log=log)
@@ -54,6 +64,7 @@ def run_example(work, dim, phi, nside, tavg, seed=4321):
 
 
 KEYS = ("T_tr", "a*", "P*xx", "P*yy", "P*xy", "R", "coll/nu")
+GRAD_PHI = 0.01    # (Grad's theory is the Boltzmann limit: compared in the dilute gas only)
 
 
 def main(argv=None):
@@ -80,6 +91,11 @@ def main(argv=None):
         lines.append(f"| {dim} | {phi} | DSMC | " + " | ".join(f"{th[k]:.4g}" for k in KEYS) + " |")
         lines.append(f"| {dim} | {phi} | ED | " + " | ".join(f"{ed[k]:.4g}" for k in KEYS) + " |")
         lines.append(f"| {dim} | {phi} | ED/DSMC - 1 | " + " | ".join(f"{100 * (ed[k] / th[k] - 1):+.1f} %" for k in KEYS) + " |")
+        if phi <= GRAD_PHI:
+            gr = grad(dim, phi)
+            lines.append(f"| {dim} | {phi} | Grad | " + " | ".join(f"{gr[k]:.4g}" for k in KEYS) + " |")
+            lines.append(f"| {dim} | {phi} | ED/Grad - 1 | " +
+                         " | ".join(f"{100 * (ed[k] / gr[k] - 1):+.1f} %" for k in KEYS) + " |")
     th = theories[(2, 0.05)]
     lines += ["", "## The box size (2D, phi = 0.05)", "", "| N | L / mean free path | " + " | ".join(
         f"{k}/DSMC" for k in KEYS) + " |", "|---|---|" + "---|" * len(KEYS)]

@@ -32,7 +32,6 @@ frequency of a Maxwellian gas at the translational temperature T), P*_ij = P_ij 
 T_rot / T_tr, and the measured collisions per particle and unit time over nu.
 """
 import math
-import os
 
 import numpy as np
 
@@ -165,10 +164,7 @@ def main(argv=None):
                      f"{m['R']:.4f} | {m['a_star']:.4f} ± {s['a_star']:.1g} | {P[0, 0]:.4f} | "
                      f"{P[1, 1]:.4f} | {P[0, 1]:.4f} ± {s['P_star'][0, 1]:.1g} | "
                      f"{m['coll_rate'] / m['nu']:.4f} |")
-    os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "report.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
-    print("\n".join(lines))
+    cli.write_report(a.out, lines)
 
 
 if __name__ == "__main__":

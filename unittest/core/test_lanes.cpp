@@ -55,3 +55,30 @@ TEST(Lanes, SameBitsAsOneAtATime)
     EXPECT_EQ(states_differing(four, one), 0) << "particles whose state differs in some bit";
   }
 }
+
+// The same in a sheared box (Lees-Edwards): the lanes take the shift and the shear rate of the
+// image above or below, as contact_at() does; shear of either sign, slow and fast
+TEST(Lanes, ShearedSameBitsAsOneAtATime)
+{
+  if (!EventDriven::have_lanes()) GTEST_SKIP() << "this processor has no AVX2";
+  const double rates[] = {0.3, -2.0};
+  for (double rate : rates) {
+    SystemSpec s = spec_of(300, 3, 0.25, 950 + (rate > 0));
+    s.polydisperse = true;
+    Reference ref = make_system(s, law_of(1));
+    const double mft = mean_free_time(ref);
+    double v2 = 0.0;
+    for (const auto &a : ref.p) v2 += norm2(a.v);
+    ref.shear = true;
+    ref.shear_rate = rate * std::sqrt(v2 / ref.p.size()) * ref.L.y;
+    ref.shift0 = 0.61 * ref.L.x;
+    ref.tc = 1e-3 * mft;
+    SCOPED_TRACE("rate " + std::to_string(rate));
+    const CoreRun one = run_lanes(ref, EDOptions::CELLS, false, mft, 15 * mft);
+    const CoreRun four = run_lanes(ref, EDOptions::CELLS, true, mft, 15 * mft);
+    ASSERT_GE(one.total.collisions, 5L * 300);
+    EXPECT_EQ(four.total.collisions, one.total.collisions);
+    EXPECT_EQ(four.total.crossings, one.total.crossings);
+    EXPECT_EQ(states_differing(four, one), 0) << "particles whose state differs in some bit";
+  }
+}

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-2.0-or-later
 // Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
 // GRANFRIC physics core: the collision candidates of a scan (see candidate_search.cpp) tested
-// four at a time in AVX2 lanes, in 3d without gravity. Compiled for AVX2 function by function
+// four at a time in AVX2 lanes, in 3d without gravity, in a sheared box too. Compiled for AVX2 function by function
 // (the rest of the core stays plain x86-64) and chosen when the program runs (have_lanes()).
 //
 // Each lane does what contact() and contact_root() do up to the horizon test: the same
@@ -121,7 +121,7 @@ bool EDCore::have_lanes()
   return __builtin_cpu_supports("avx2");
 }
 
-template <bool LATEST, bool CELLS>
+template <bool LATEST, bool CELLS, bool SHEARED>
 __attribute__((target("avx2"))) void EDCore::offer_lanes(Seek &k, const ListEntry *e, const int *js, int n)
 {
   const int i = k.i;
@@ -160,14 +160,20 @@ __attribute__((target("avx2"))) void EDCore::offer_lanes(Seek &k, const ListEntr
     } else {
       const __m128i sh = entry_shift_bytes(el);
       any = shifted(sh, 0x00ffffff, live);
-      if (any) o = entry_shifts(sh);
+      if (any || SHEARED) o = entry_shifts(sh);
     }
     if (any) {
       rx = _mm256_sub_pd(rx, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o0), _mm256_set1_pd(P.x)));
       ry = _mm256_sub_pd(ry, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o1), _mm256_set1_pd(P.y)));
       rz = _mm256_sub_pd(rz, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o2), _mm256_set1_pd(P.z)));
+      if (SHEARED) {    // (contact_at: the image o1 periods up, o1 s(tr) further in x)
+        const __m256d s = _mm256_add_pd(_mm256_set1_pd(shear_s0), _mm256_mul_pd(_mm256_set1_pd(opt.shear_rate), tr));
+        rx = _mm256_sub_pd(rx, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o1), s));
+      }
     }
-    const __m256d vx = _mm256_sub_pd(ux, q.vx), vy = _mm256_sub_pd(uy, q.vy), vz = _mm256_sub_pd(uz, q.vz);
+    __m256d vx = _mm256_sub_pd(ux, q.vx);
+    const __m256d vy = _mm256_sub_pd(uy, q.vy), vz = _mm256_sub_pd(uz, q.vz);
+    if (SHEARED) vx = _mm256_sub_pd(vx, _mm256_mul_pd(_mm256_cvtepi32_pd(o.o1), _mm256_set1_pd(opt.shear_rate)));
     const __m256d b = dot4(rx, ry, rz, vx, vy, vz), sig = _mm256_add_pd(pa, q.a);
     const __m256d c = _mm256_sub_pd(dot4(rx, ry, rz, rx, ry, rz), _mm256_mul_pd(sig, sig));
     const __m256d w2 = dot4(vx, vy, vz, vx, vy, vz);
@@ -205,6 +211,10 @@ template void EDCore::offer_lanes<true, true>(Seek &, const ListEntry *, const i
 template void EDCore::offer_lanes<true, false>(Seek &, const ListEntry *, const int *, int);
 template void EDCore::offer_lanes<false, true>(Seek &, const ListEntry *, const int *, int);
 template void EDCore::offer_lanes<false, false>(Seek &, const ListEntry *, const int *, int);
+template void EDCore::offer_lanes<true, false, true>(Seek &, const ListEntry *, const int *, int);
+template void EDCore::offer_lanes<false, false, true>(Seek &, const ListEntry *, const int *, int);
+template void EDCore::offer_lanes<true, true, true>(Seek &, const ListEntry *, const int *, int);
+template void EDCore::offer_lanes<false, true, true>(Seek &, const ListEntry *, const int *, int);
 
 #undef LANES
 

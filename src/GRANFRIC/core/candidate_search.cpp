@@ -27,11 +27,8 @@ void EDCore::scan_full(int i)
 template <bool FULL>
 void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 {
-  if (opt.shear) {    // (a sheared box: every scan takes the images' shift, see contact_at)
-    if (opt.dim == 2)
-      has_gravity ? scan_at<2, true, FULL, true>(i, dlo, dhi) : scan_at<2, false, FULL, true>(i, dlo, dhi);
-    else
-      has_gravity ? scan_at<3, true, FULL, true>(i, dlo, dhi) : scan_at<3, false, FULL, true>(i, dlo, dhi);
+  if (opt.shear) {    // (a sheared box: its cells move with the flow, see shear.cpp)
+    scan_sheared(i, FULL, dlo, dhi);
     return;
   }
   if (opt.dim == 2) {
@@ -49,13 +46,54 @@ void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 
 // A seeker at the present (as after its collision) is at least as late as every candidate
 // (at_present()): its scan knows that at compile time (LATEST)
-template <int DIM, bool GRAV, bool FULL, bool SHEARED>
+template <int DIM, bool GRAV, bool FULL>
 inline void EDCore::scan_at(int i, const int dlo[3], const int dhi[3])
 {
   if (at_present(i))
-    scan_t<DIM, GRAV, FULL, true, SHEARED>(i, dlo, dhi);
+    scan_t<DIM, GRAV, FULL, true>(i, dlo, dhi);
   else
-    scan_t<DIM, GRAV, FULL, false, SHEARED>(i, dlo, dhi);
+    scan_t<DIM, GRAV, FULL, false>(i, dlo, dhi);
+}
+
+// The candidates of a sheared box in the rows of cells next to i (sheared_spans)
+template <int DIM, bool GRAV, bool LATEST>
+void EDCore::scan_spans_t(int i, const RowSpan *s, int n)
+{
+  Seek k = seek(i);
+  if (DIM == 3 && !GRAV && lanes && offer_spans_lanes<LATEST>(k, s, n)) {
+    settle(k);
+    return;
+  }
+  const CellImage *IM = images.data();
+  const int n0 = nc[0];
+  for (int r = 0; r < n; r++) {
+    const RowSpan &w = s[r];
+    const int *row = head.data() + (w.cz * nc[1] + w.cy) * n0;
+    int q = (int) floor_div(w.a0, n0), u = (int) (w.a0 - (long) q * n0);
+    for (long a = w.a0; a <= w.a1; a++) {
+      for (int j = row[u]; j >= 0; j = IM[j].next)
+        if (j != i)
+          offer<DIM, GRAV, LATEST, true>(k, j, q - IM[j].k[0], w.ky - IM[j].k[1], DIM == 3 ? w.kz - IM[j].k[2] : 0);
+      if (++u == n0) u = 0, q++;
+    }
+  }
+  settle(k);
+}
+
+void EDCore::scan_spans(int i, const RowSpan *s, int n)
+{
+  const bool latest = at_present(i);
+  if (opt.dim == 2) {
+    if (has_gravity)
+      latest ? scan_spans_t<2, true, true>(i, s, n) : scan_spans_t<2, true, false>(i, s, n);
+    else
+      latest ? scan_spans_t<2, false, true>(i, s, n) : scan_spans_t<2, false, false>(i, s, n);
+  } else {
+    if (has_gravity)
+      latest ? scan_spans_t<3, true, true>(i, s, n) : scan_spans_t<3, true, false>(i, s, n);
+    else
+      latest ? scan_spans_t<3, false, true>(i, s, n) : scan_spans_t<3, false, false>(i, s, n);
+  }
 }
 
 // The contact time of a particle in stored state p and one in stored state q at the image shift
@@ -91,8 +129,8 @@ static inline v2d xy(const Vec3 &a)
 // SHEARED: a sheared box (Lees-Edwards: the image o1 periods up lies o1 s(tr) further in x and
 // moves o1 times the shear rate faster; at o1 = 0 the terms are exact zeros, which leave every
 // number as it is); either partner computes the same numbers (the negated shift gives the
-// negated differences). The scans of a sheared box are instances of their own (scan_in), so that
-// those of an unsheared one test nothing.
+// negated differences). The scans of a sheared box are instances of their own (scan_spans_t), so
+// that those of an unsheared one test nothing.
 template <int DIM, bool GRAV, bool SHEARED>
 inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p, double tr, const Vec3 &a,
                                                                      const Vec3 &u, const Flight &q, int o0,
@@ -221,22 +259,78 @@ bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8
   return true;
 }
 
+// scan_spans_t() in 3d without gravity, in lanes (as many candidates at a time as a buffer
+// holds). A row at i's own y and z image whose cells do not wrap in x holds candidates at the
+// image shifts their labels give (i's less theirs), as an unsheared scan's cells do: those go
+// to the lanes as particles; the others (across a face, or wrapping) as list entries with their
+// shifts. False (k as it was): a shift beyond an entry's range.
+template <bool LATEST>
+bool EDCore::offer_spans_lanes(Seek &k, const RowSpan *s, int n)
+{
+  const int i = k.i;
+  const int *pk = images[i].k;
+  const CellImage *IM = images.data();
+  const Seek start = k;
+  const long n0 = nc[0], lo = n0 * pk[0];
+  int js[LANE_BUFFER], nj = 0;
+  ListEntry buf[LANE_BUFFER];
+  int nb = 0, wide = 0;
+  for (int r = 0; r < n; r++) {
+    const RowSpan &w = s[r];
+    const int *row = head.data() + (w.cz * nc[1] + w.cy) * nc[0];
+    if (w.ky == pk[1] && w.kz == pk[2] && w.a0 >= lo && w.a1 < lo + n0) {
+      for (long a = w.a0; a <= w.a1; a++)
+        for (int j = row[a - lo]; j >= 0; j = IM[j].next) {
+          js[nj] = j;
+          nj += j != i;
+          if (nj == LANE_BUFFER) {
+            offer_lanes<LATEST, true, true>(k, nullptr, js, nj);
+            nj = 0;
+          }
+        }
+      continue;
+    }
+    int q = (int) floor_div(w.a0, n0), u = (int) (w.a0 - (long) q * n0);
+    for (long a = w.a0; a <= w.a1; a++) {
+      for (int j = row[u]; j >= 0; j = IM[j].next) {
+        const int o0 = q - IM[j].k[0], o1 = w.ky - IM[j].k[1], o2 = w.kz - IM[j].k[2];
+        wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
+        buf[nb] = ListEntry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
+        nb += j != i;
+        if (nb == LANE_BUFFER) {
+          if (wide & ~255) break;
+          offer_lanes<LATEST, false, true>(k, buf, nullptr, nb);
+          nb = 0;
+        }
+      }
+      if (wide & ~255) {
+        k = start;
+        return false;
+      }
+      if (++u == n0) u = 0, q++;
+    }
+  }
+  offer_lanes<LATEST, true, true>(k, nullptr, js, nj);
+  offer_lanes<LATEST, false, true>(k, buf, nullptr, nb);
+  return true;
+}
+
 // The candidates in gathered cells, in order: first[f] heads the list of a cell reached at the
 // image shift shift[of[f]] (shift null: every shift 0)
-template <int DIM, bool GRAV, bool LATEST, bool SHEARED>
+template <int DIM, bool GRAV, bool LATEST>
 inline __attribute__((always_inline)) void EDCore::offer_cells(Seek &k, const int *first, int nfirst,
                                                                    const int8_t (*shift)[3], const int *of)
 {
   const int i = k.i;
   const int pk[3] = {images[i].k[0], images[i].k[1], images[i].k[2]};
   const CellImage *IM = images.data();
-  if (DIM == 3 && !GRAV && !SHEARED && lanes && offer_cells_lanes<LATEST>(k, first, nfirst, shift, of)) return;
+  if (DIM == 3 && !GRAV && lanes && offer_cells_lanes<LATEST>(k, first, nfirst, shift, of)) return;
   for (int f = 0; f < nfirst; f++) {
     const int8_t *u = shift ? shift[of[f]] : nullptr;
     const int k0 = u ? pk[0] + u[0] : pk[0], k1 = u ? pk[1] + u[1] : pk[1], k2 = u ? pk[2] + u[2] : pk[2];
     for (int j = first[f]; j >= 0; j = IM[j].next)
       if (j != i)
-        offer<DIM, GRAV, LATEST, SHEARED>(k, j, k0 - IM[j].k[0], k1 - IM[j].k[1], DIM == 3 ? k2 - IM[j].k[2] : 0);
+        offer<DIM, GRAV, LATEST>(k, j, k0 - IM[j].k[0], k1 - IM[j].k[1], DIM == 3 ? k2 - IM[j].k[2] : 0);
   }
 }
 
@@ -245,7 +339,7 @@ inline __attribute__((always_inline)) void EDCore::offer_cells(Seek &k, const in
 // moves in z (v.z = 0, g.z = 0): the z terms of the relative motion vanish except the constant
 // z distance, and every operation left is the one of the 3d arithmetic in the same order, so
 // the contact times are the same numbers bit for bit.
-template <int DIM, bool GRAV, bool FULL, bool LATEST, bool SHEARED>
+template <int DIM, bool GRAV, bool FULL, bool LATEST>
 void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
 {
   Seek k = seek(i);
@@ -275,7 +369,7 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
           nfirst += j >= 0;
         }
       }
-    offer_cells<DIM, GRAV, LATEST, SHEARED>(k, first, nfirst, nullptr, nullptr);
+    offer_cells<DIM, GRAV, LATEST>(k, first, nfirst, nullptr, nullptr);
     settle(k);
     return;
   }
@@ -291,7 +385,7 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
       of[nfirst] = f;
       nfirst += j >= 0;
     }
-    offer_cells<DIM, GRAV, LATEST, SHEARED>(k, first, nfirst, shift, of);
+    offer_cells<DIM, GRAV, LATEST>(k, first, nfirst, shift, of);
     settle(k);
     return;
   }
@@ -303,20 +397,14 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
       int uy = c[1] + dy, ky = 0;
       if (uy < 0) { if (!opt.periodic[1]) continue; uy += nc[1]; ky = -1; }
       else if (uy >= nc[1]) { if (!opt.periodic[1]) continue; uy -= nc[1]; ky = 1; }
-      // (Lees-Edwards: a row across a y face is shifted; its 4 cells next to i, see
-      // sheared_row, are all scanned)
-      int su[4], sk[4];
-      const bool sheared = opt.shear && ky != 0;
-      const int sx0 = sheared ? 0 : x0, sx1 = sheared ? sheared_row(c[0], ky, su, sk) - 1 : x1;
-      for (int dx = sx0; dx <= sx1; dx++) {
+      for (int dx = x0; dx <= x1; dx++) {
         int ux = c[0] + dx, kx = 0;
-        if (sheared) { ux = su[dx]; kx = sk[dx]; }
-        else if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
+        if (ux < 0) { if (!opt.periodic[0]) continue; ux += nc[0]; kx = -1; }
         else if (ux >= nc[0]) { if (!opt.periodic[0]) continue; ux -= nc[0]; kx = 1; }
         const int cell = (uz * nc[1] + uy) * nc[0] + ux;
         for (int j = head[cell]; j >= 0; j = images[j].next)
-          if (j != i) offer<DIM, GRAV, LATEST, SHEARED>(k, j, pk[0] + kx - images[j].k[0], pk[1] + ky - images[j].k[1],
-                                      DIM == 3 ? pk[2] + kz - images[j].k[2] : 0);
+          if (j != i) offer<DIM, GRAV, LATEST>(k, j, pk[0] + kx - images[j].k[0], pk[1] + ky - images[j].k[1],
+                                                DIM == 3 ? pk[2] + kz - images[j].k[2] : 0);
       }
     }
   }
@@ -358,16 +446,16 @@ bool EDCore::have_lanes()
   return false;
 }
 
-template <bool LATEST, bool CELLS>
+template <bool LATEST, bool CELLS, bool SHEARED>
 void EDCore::offer_lanes(Seek &k, const ListEntry *e, const int *js, int n)
 {
   const int *pk = images[k.i].k;
   for (int m = 0; m < n; m++) {
     const int j = CELLS ? js[m] : e[m].j;
     if (CELLS)
-      offer<3, false, LATEST>(k, j, pk[0] - images[j].k[0], pk[1] - images[j].k[1], pk[2] - images[j].k[2]);
+      offer<3, false, LATEST, SHEARED>(k, j, pk[0] - images[j].k[0], pk[1] - images[j].k[1], pk[2] - images[j].k[2]);
     else
-      offer<3, false, LATEST>(k, j, e[m].o[0], e[m].o[1], e[m].o[2]);
+      offer<3, false, LATEST, SHEARED>(k, j, e[m].o[0], e[m].o[1], e[m].o[2]);
   }
 }
 #endif
@@ -409,6 +497,18 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
     if (lists) {
       const ListEntry *e = &list_entries[(size_t) i * LCAP];
       for (int m = 0; m < list_counts[i]; m++) test(e[m].j, e[m].o[0], e[m].o[1], e[m].o[2]);
+      continue;
+    }
+    if (opt.shear) {
+      RowSpan sp[9];
+      const int ns = sheared_spans(i, sp);
+      for (int r = 0; r < ns; r++)
+        for (long a = sp[r].a0; a <= sp[r].a1; a++) {
+          const long q = floor_div(a, nc[0]);
+          const int cell = (sp[r].cz * nc[1] + sp[r].cy) * nc[0] + (int) (a - q * nc[0]);
+          for (int j = head[cell]; j >= 0; j = images[j].next)
+            test(j, (int) q - images[j].k[0], sp[r].ky - images[j].k[1], sp[r].kz - images[j].k[2]);
+        }
       continue;
     }
     int cell[AROUND];

@@ -192,11 +192,11 @@ void EDCore::place(int i)
   Vec3 x = pos(i, now);    // (with lists: the new list centre)
   Schedule &s = schedules[i];
   if (opt.shear) {
-    // (Lees-Edwards: the image k1 periods up in y lies k1 s further in x; its x cell is that of
-    // the position less the shift)
+    // (Lees-Edwards: the image k1 periods up in y lies k1 s further in x, and the row of cells
+    // c1 is shifted by c1 D: its x cell is that of the position less both)
     int c, k;
     locate(1, x[1], c, k);
-    x.x -= k * shift_at(now);
+    x.x -= k * shift_at(now) + row_shift(c, now);
   }
   for (int d = 0; d < 3; d++) {
     if (d >= opt.dim) {
@@ -218,13 +218,12 @@ void EDCore::place(int i)
 }
 
 // Lees-Edwards: a particle's position and velocity as its x cell sees them: less the shift and
-// the shear rate of its image in y
+// the shear rate of its image in y, and less those of its row of cells
 void EDCore::sheared_frame(int i, Vec3 &x, Vec3 &v) const
 {
-  const int k = images[i].k[1];
-  if (!k) return;
-  x.x -= k * shift_at(now);
-  v.x -= image_speed(k);
+  const int k = images[i].k[1], r = schedules[i].c[1];
+  x.x -= k * shift_at(now) + row_shift(r, now);    // (as place() and cross() take it)
+  v.x -= image_speed(k) + row_speed(r);
 }
 
 // cell c (0 .. nc-1) and periodic image k of coordinate xd in dimension d
@@ -237,10 +236,9 @@ void EDCore::locate(int d, double xd, int &c, int &k) const
   c = (int) (u - kk * nc[d]);
 }
 
-// The neighbouring cells of i's cell (3^dim of them, fewer at non-periodic edges; with shear
-// 4 in each row across a y face, see sheared_row) as cell indices and the image shifts k (-1,
-// 0, 1 per dimension, in x up to -2 or 2 across a sheared face) at which they are reached;
-// returns how many
+// The neighbouring cells of i's cell (3^dim of them, fewer at non-periodic edges) as cell
+// indices and the image shifts k (-1, 0, 1 per dimension) at which they are reached; returns
+// how many (a sheared box: sheared_spans)
 int EDCore::around(int i, int cell[AROUND], int8_t shift[AROUND][3]) const
 {
   const int16_t *c = schedules[i].c;
@@ -275,35 +273,13 @@ int EDCore::around(int i, int cell[AROUND], int8_t shift[AROUND][3]) const
     }
   }
   for (int z = 0; z < m[2]; z++)
-    for (int y = 0; y < m[1]; y++) {
-      int su[4], sk[4];
-      const bool sheared = opt.shear && k[1][y] != 0;
-      const int mx = sheared ? sheared_row(c[0], k[1][y], su, sk) : m[0];
-      for (int x = 0; x < mx; x++) {
-        cell[n] = (u[2][z] * nc[1] + u[1][y]) * nc[0] + (sheared ? su[x] : u[0][x]);
-        shift[n][0] = (int8_t) (sheared ? sk[x] : k[0][x]);
-        shift[n][1] = (int8_t) k[1][y], shift[n][2] = (int8_t) k[2][z];
+    for (int y = 0; y < m[1]; y++)
+      for (int x = 0; x < m[0]; x++) {
+        cell[n] = (u[2][z] * nc[1] + u[1][y]) * nc[0] + u[0][x];
+        shift[n][0] = (int8_t) k[0][x], shift[n][1] = (int8_t) k[1][y], shift[n][2] = (int8_t) k[2][z];
         n++;
       }
-    }
   return n;
-}
-
-// Lees-Edwards: the x cells (u) and their image shifts in x (k) of the row across a y face
-// (ky = 1: the bottom row seen one period up, shifted by s in x; ky = -1: the top row one
-// period down) that can hold a partner of a particle in x cell c0. With the shift s = (m + f)
-// cell widths (0 <= f < 1, m = shear_m), a partner lies within one cell width of c0 after the
-// shift: the 4 cells from c0 - m - 2 (ky = 1) or c0 + m - 1 (ky = -1) on, 3 of them while f = 0.
-// Returns 4.
-int EDCore::sheared_row(int c0, int ky, int u[4], int k[4]) const
-{
-  const int first = ky > 0 ? c0 - shear_m - 2 : c0 + shear_m - 1;
-  for (int e = 0; e < 4; e++) {
-    const int x = first + e;
-    k[e] = x >= 0 ? x / nc[0] : -((-x + nc[0] - 1) / nc[0]);
-    u[e] = x - k[e] * nc[0];
-  }
-  return 4;
 }
 
 void EDCore::cell_insert(int i)
@@ -342,7 +318,7 @@ inline __attribute__((always_inline)) void EDCore::predict_crossing_in(int i, co
 
 void EDCore::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  if (opt.shear && images[i].k[1]) {    // (a sheared image: as its x cell sees it)
+  if (opt.shear) {    // (as its sheared row of cells sees it)
     Vec3 x = xi, v = vi;
     sheared_frame(i, x, v);
     predict_crossing_in(i, x, v);
@@ -413,41 +389,41 @@ void EDCore::cross(int i)
     return;
   }
   count_crossing(i);
-  const Flight &q = flights[i];
   Schedule &p = schedules[i];
   const int d = p.xdim, dir = p.xdir;
+  // (Lees-Edwards: into another row of cells, which is shifted in x, and maybe through a y face
+  // into an image shifted in x: the x cell is found afresh, and the rows next to the particle
+  // are compared before and after)
+  const bool row_change = opt.shear && d == 1;
+  RowSpan before[9];
+  const int nbefore = row_change ? sheared_spans(i, before) : 0;
   cell_remove(i);
   p.c[d] += dir;
-  bool wrapped = true;
   if (p.c[d] == nc[d]) {
     p.c[d] = 0;
     images[i].k[d]++;
   } else if (p.c[d] < 0) {
     p.c[d] = nc[d] - 1;
     images[i].k[d]--;
-  } else {
-    wrapped = false;
   }
-  // (Lees-Edwards: through a y face the particle enters an image shifted in x, where its x cell
-  // is found afresh, and everything around it is new)
-  const bool moved = opt.shear && d == 1 && wrapped;
-  if (moved) {
+  if (row_change) {
     int c, k;
-    locate(0, pos(i, now).x - images[i].k[1] * shift_at(now), c, k);
+    locate(0, pos(i, now).x - (images[i].k[1] * shift_at(now) + row_shift(p.c[1], now)), c, k);
     p.c[0] = (int16_t) c;
     images[i].k[0] = k;
   }
   cell_insert(i);
   stats.crossings++;
   crossings_since_reorder++;
-  (void) q;
   const Vec3 xi = pos(i, now), vi = vel(i, now);    // (the stored state is not re-rounded)
   predict_crossing(i, xi, vi);
-  if (moved || (p.ct < NEVER && stale(p))) {
+  if (p.ct < NEVER && stale(p)) {
     // the stored collision candidate went stale: look at every neighbouring cell
     p.ct = NEVER;
     p.cpartner = -1;
     scan_full(i);
+  } else if (row_change) {
+    scan_new_spans(i, before, nbefore);
   } else {
     // trajectory unchanged: only the layer of cells that just became adjacent is new
     const int zr = opt.dim == 3 ? 1 : 0;

@@ -311,20 +311,43 @@ class EDCore {
   void cell_insert(int i);
   void cell_remove(int i);
   // the cells around i's (3^dim, fewer at non-periodic edges): cell indices and the image
-  // shifts (-1, 0, 1 per dimension) at which they are reached; returns how many
-  static constexpr int AROUND = 36;     // (the most: 3 rows of 3 + 3 + 4 cells, with shear)
+  // shifts (-1, 0, 1 per dimension) at which they are reached; returns how many (not in a
+  // sheared box: sheared_spans)
+  static constexpr int AROUND = 27;
   int around(int i, int cell[AROUND], int8_t shift[AROUND][3]) const;
-  // ---- Lees-Edwards (shear.cpp): the shift in cell widths, m (0 <= m < nc[0], see
-  // sheared_row), changes at shear ticks, at which the pairs of the cells that come next to
-  // each other across the y faces become candidates
+  // ---- Lees-Edwards (shear.cpp): every row of cells (y cell r) moves with the flow, shifted in
+  // x by r D(t), where D = (s + w L_x) / nc[1] is the shift between neighbouring rows (and,
+  // less w periods, across the y faces); D in cell widths is m + f (0 <= m < nc[0]), and m
+  // changes at shear ticks, at which the pairs of the cells that come next to each other
+  // across every row boundary become candidates
   int shear_m = 0;
-  double shear_next = NEVER;             // the next shear tick's time
-  int sheared_row(int c0, int ky, int u[4], int k[4]) const;
+  int shear_w = 0;                       // 0 <= w < nc[1]
+  double shear_next = NEVER;             // the next shear event's time
+  bool shear_wraps = false;              // whether it is the shift's passing a period
+  void shear_schedule();
+  double row_step(double t) const { return (shift_at(t) + shear_w * P.x) / nc[1]; }    // D(t)
+  double row_shift(int r, double t) const { return r * row_step(t); }
+  double row_speed(int r) const { return r * (opt.shear_rate / nc[1]); }
+  // the cells a particle's scan takes in a sheared box: per row next to it (y cell cy at y
+  // image ky, z cell cz at z image kz), the x cells a0..a1 counted across images (cell
+  // a - q nc[0] at x image q = floor(a / nc[0])), 3 in its own row, 4 in the rows above and below
+  struct RowSpan {
+    int dy, dz, cy, ky, cz, kz;
+    long a0, a1;
+  };
+  int sheared_spans(int i, RowSpan out[9]) const;
+  static long floor_div(long a, long n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
+  template <int DIM, bool GRAV, bool LATEST>
+  void scan_spans_t(int i, const RowSpan *s, int n);
+  void scan_spans(int i, const RowSpan *s, int n);
+  void scan_sheared(int i, bool full, const int dlo[3], const int dhi[3]);
+  void scan_new_spans(int i, const RowSpan *before, int nbefore);    // (after a y crossing)
   void sheared_frame(int i, Vec3 &x, Vec3 &v) const;
   void shear_start();                    // (start(): the shift into [0, L_x), before the cells)
-  void shear_cells();                    // (start(): m and the first tick, after the cells)
+  void shear_cells();                    // (start(): m and the first event, after the cells)
   void shear_tick();
   void shear_relabel(int dir);           // the shift by dir periods less: images follow
+  void row_relabel(int dir);             // D by dir periods less: images follow
 
   // next cell crossing only; xi, vi: the particle's state now
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
@@ -376,13 +399,12 @@ class EDCore {
   void scan_full(int i);    // offsets -1..1 in every dimension
   template <bool FULL>
   void scan_in(int i, const int dlo[3], const int dhi[3]);
-  template <int DIM, bool GRAV, bool FULL, bool SHEARED = false>
+  template <int DIM, bool GRAV, bool FULL>
   void scan_at(int i, const int dlo[3], const int dhi[3]);
   // whether i's stored state is at the present: no stored time is later than now, so i is then
   // the later one of every pair it predicts
   bool at_present(int i) const { return flights[i].t == now; }
-  // (SHEARED: the instances of a sheared box, see contact_at)
-  template <int DIM, bool GRAV, bool FULL, bool LATEST, bool SHEARED = false>
+  template <int DIM, bool GRAV, bool FULL, bool LATEST>
   void scan_t(int i, const int dlo[3], const int dhi[3]);
   // a scan in progress: particle i's stored state (read once), its best candidate so far
   // (time t, partner j, image shift o; j = -1: the schedule's candidate stands) and the
@@ -409,14 +431,17 @@ class EDCore {
   }
   // offer() for each of the n candidates e[0..n) in turn, in 3d without gravity; four at once
   // (CELLS: the candidates js[0..n) at i's own image, else the list entries e[0..n))
-  template <bool LATEST, bool CELLS>
+  // (SHEARED: a sheared box, the image shifts taken as contact_at's SHEARED takes them)
+  template <bool LATEST, bool CELLS, bool SHEARED = false>
   void offer_lanes(Seek &k, const ListEntry *e, const int *js, int n);
+  template <bool LATEST>
+  bool offer_spans_lanes(Seek &k, const RowSpan *s, int n);
   template <bool LATEST>
   bool offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
   double at_least_now(double t) const { return t < now ? now : t; }    // (a contact time)
   // the candidates in the cells whose first particles a scan gathered (shift: their image
   // shifts, the f-th at of[f]; null: none)
-  template <int DIM, bool GRAV, bool LATEST, bool SHEARED = false>
+  template <int DIM, bool GRAV, bool LATEST>
   void offer_cells(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
   // the canonical contact time of stored states p and q at the image shift o (q's position +
   // o P), >= now; NEVER also where it is certainly >= before

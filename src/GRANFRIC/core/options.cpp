@@ -75,8 +75,8 @@ void EventDriven::configure(const EDOptions &o, int nt, const std::vector<LawPar
 {
   check_options(o, nt, table);
   opt = o;
-  // (the scans that use them are 3d without gravity and without shear)
-  lanes = o.simd && have_lanes() && !o.shear;
+  // (the scans that use them are 3d without gravity)
+  lanes = o.simd && have_lanes();
   // the last collision times exist only with the TC model
   if (o.tc > 0.0 && last_collision.size() != flights.size()) last_collision.assign(flights.size(), -INF);
   if (!(o.tc > 0.0)) last_collision.clear();

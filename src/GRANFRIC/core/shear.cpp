@@ -3,16 +3,26 @@
 // GRANFRIC physics core: Lees-Edwards boundaries (simple shear, EDOptions::shear; see
 // event_driven.h). The image of the box one period up in y lies shifted by s(t) in x and moves
 // at the shear rate. Stored positions stay unwrapped: a pair's image shift o takes o_y s(t) in x
-// and o_y times the shear rate in velocity (EDCore::image, contact_at, collide_pair); a particle
-// in image k_y has its x cell from its position less k_y s(t) (place, sheared_frame).
+// and o_y times the shear rate in velocity (EDCore::image, contact_at, collide_pair).
 //
-// Which cells are next to each other across a y face changes with s alone, without any event of
-// a particle: every time s passes a multiple of the x cell width (a shear tick) one new cell
-// comes next to each cell of the top row, and the pairs of the two cells are offered to both
-// partners as candidates (shear_tick). Between ticks a particle's scan takes the 4 cells across
-// the face that can hold a partner (sheared_row). The shift is kept within [0, L_x]: when a tick
-// takes it past, it loses a period and the images' labels follow (shear_relabel), so that the
-// numbers stay as precise as in the first period.
+// The cells move with the flow, so that a particle crosses them at its speed relative to the
+// flow rather than at the streaming speed, which grows with the box: the row of cells c1 (its y
+// cell) is shifted in x by c1 D(t), D = (s + w L_x) / n_y (row_step), and moves at c1 times
+// the shear rate over n_y. Neighbouring rows are then shifted by D against each other, and so
+// are the top row and the bottom row of the image one period up (s - (n_y - 1) D = D - w L_x:
+// the same shift, less w periods of x): every boundary between rows is sheared alike. A
+// particle in image k_y and row c1 has its x cell from its position less k_y s + c1 D (place,
+// sheared_frame); a crossing into another row finds its x cell afresh (cross).
+//
+// Which cells of neighbouring rows are next to each other changes with D alone, without any
+// event of a particle: every time D passes a multiple of the x cell width (a shear tick) one new
+// cell comes next to each cell from the row above, and the pairs of the two cells are offered to
+// both partners as candidates (shear_tick). Between ticks a particle's scan takes the 4 cells of
+// the rows above and below that can hold a partner (sheared_spans). The shift s is kept within
+// [0, L_x): a period is taken from it when it passes L_x (or 0), at a time that depends on s
+// alone, and w counts the periods taken (shear_relabel). D stays within [0, L_x): when w reaches
+// n_y, D has passed a period with s, w starts again and the images' labels follow (row_relabel).
+// So the numbers stay as precise as in the first period.
 #include "event_driven.h"
 
 #include <cmath>
@@ -26,9 +36,10 @@ void EventDriven::set_shear_shift(double s)
 }
 
 // (start(): the shift brought into [0, L_x) at the present, the last partners' image shifts
-// following, so that sheared_row's cells hold)
+// following, so that the cells hold; the rows start unshifted against the shift's period)
 void EDCore::shear_start()
 {
+  shear_w = 0;
   if (!opt.shear) return;
   const double M = std::floor(shift_at(now) / P.x);
   if (M == 0.0) return;
@@ -36,71 +47,182 @@ void EDCore::shear_start()
   for (auto &s : schedules) s.last_off[0] += (int) M * s.last_off[1];
 }
 
-// the shift's cell and the first tick (after the cells)
+// The next shear event: the shift passing a period of x (at s = L_x or 0: whole periods are
+// taken from it at times that do not depend on the cells), or D the next multiple of the cell
+// width ahead (a tick). D passes a period only with the shift (s + w L_x = n_y L_x: w at its
+// end), so that tick is the shift's.
+void EDCore::shear_schedule()
+{
+  shear_next = NEVER;
+  const double u = opt.shear_rate;
+  if (!opt.shear || u == 0.0) return;
+  const int dir = u > 0.0 ? 1 : -1;
+  const double wrap = std::max(now, ((dir > 0 ? P.x : 0.0) - shear_s0) / u);
+  double tick_at = NEVER;
+  if (dir > 0 ? shear_m + 1 < nc[0] : shear_m > 0) {
+    const double edge = (dir > 0 ? shear_m + 1 : shear_m) * cw[0];
+    tick_at = std::max(now, (nc[1] * edge - shear_w * P.x - shear_s0) / u);
+  }
+  shear_wraps = !(tick_at < wrap);
+  shear_next = shear_wraps ? wrap : tick_at;
+}
+
+// D's cell and the first event (after the cells)
 void EDCore::shear_cells()
 {
   shear_next = NEVER;
   if (!opt.shear) return;
-  shear_m = std::min(std::max(0, (int) std::floor(shift_at(now) / cw[0])), nc[0] - 1);
-  const double u = opt.shear_rate;
-  if (u == 0.0) return;
-  const double edge = (u > 0.0 ? shear_m + 1 : shear_m) * cw[0];
-  shear_next = std::max(now, (edge - shear_s0) / u);
+  shear_m = std::min(std::max(0, (int) std::floor(row_step(now) / cw[0])), nc[0] - 1);
+  shear_schedule();
 }
 
-// s has passed the next multiple of the cell width: the new pairs across the y faces
+// The rows of cells next to particle i's and the x cells of each that can hold a partner: its
+// own row, x cells c0 - 1 .. c0 + 1; the row above, shifted by D = (m + f) cell widths, the 4
+// x cells from c0 - m - 2 on (a partner within a cell width lies within 2 + f cells less m);
+// the row below, the 4 from c0 + m - 1 on. Across a y face the row is that of the image up or
+// down, w periods of x further (s - (n_y - 1) D = D - w L_x). Counted across images: x cell a
+// of a row is its cell a - q nc[0] at x image q.
+int EDCore::sheared_spans(int i, RowSpan out[9]) const
+{
+  const int16_t *c = schedules[i].c;
+  const int *pk = images[i].k;
+  const long n0 = nc[0], C = c[0] + n0 * pk[0], face = (long) shear_w * n0;
+  // the rows below, at and above i's (y cell, y image, first x cell)
+  int cy[3] = {c[1] - 1, c[1], c[1] + 1}, ky[3] = {pk[1], pk[1], pk[1]};
+  long a0[3] = {C + shear_m - 1, C - 1, C - shear_m - 2};
+  if (cy[0] < 0) cy[0] += nc[1], ky[0]--, a0[0] -= face;
+  if (cy[2] >= nc[1]) cy[2] -= nc[1], ky[2]++, a0[2] += face;
+  int n = 0;
+  const int zr = opt.dim == 3 ? 1 : 0;
+  for (int dz = -zr; dz <= zr; dz++) {
+    int cz = c[2] + dz, kz = pk[2];
+    if (cz < 0 || cz >= nc[2]) {
+      if (!opt.periodic[2]) continue;
+      const int e = cz < 0 ? -1 : 1;
+      cz -= e * nc[2];
+      kz += e;
+    }
+    for (int r = 0; r < 3; r++) {
+      RowSpan &s = out[n++];
+      s.dy = r - 1, s.dz = dz, s.cy = cy[r], s.ky = ky[r], s.cz = cz, s.kz = kz;
+      s.a0 = a0[r];
+      s.a1 = a0[r] + (r == 1 ? 2 : 3);
+    }
+  }
+  return n;
+}
+
+// scan() in a sheared box: every row next to i (full), or the cells that a crossing in x or z
+// (the offsets dlo..dhi of one layer) has just brought next to it: in x the leading cell of
+// every row, in z the rows of the new layer
+void EDCore::scan_sheared(int i, bool full, const int dlo[3], const int dhi[3])
+{
+  RowSpan s[9];
+  int n = sheared_spans(i, s);
+  if (!full && dlo[0] == dhi[0]) {
+    for (int r = 0; r < n; r++) {
+      if (dlo[0] > 0) s[r].a0 = s[r].a1;
+      else s[r].a1 = s[r].a0;
+    }
+  } else if (!full && opt.dim == 3 && dlo[2] == dhi[2]) {
+    int m = 0;
+    for (int r = 0; r < n; r++)
+      if (s[r].dz == dlo[2]) s[m++] = s[r];
+    n = m;
+  }
+  scan_spans(i, s, n);
+}
+
+// after a crossing into another row: the cells of the rows next to i now that were not next to
+// it before (the same row, at the same images, with x cells outside the earlier ones)
+void EDCore::scan_new_spans(int i, const RowSpan *before, int nbefore)
+{
+  RowSpan now_[9], todo[18];
+  const int n = sheared_spans(i, now_);
+  int m = 0;
+  for (int r = 0; r < n; r++) {
+    const RowSpan &s = now_[r];
+    const RowSpan *b = nullptr;
+    for (int q = 0; q < nbefore && !b; q++)
+      if (before[q].cy == s.cy && before[q].ky == s.ky && before[q].cz == s.cz && before[q].kz == s.kz)
+        b = &before[q];
+    if (!b || b->a1 < s.a0 || s.a1 < b->a0) {
+      todo[m++] = s;
+      continue;
+    }
+    if (s.a0 < b->a0) {
+      todo[m] = s;
+      todo[m++].a1 = b->a0 - 1;
+    }
+    if (s.a1 > b->a1) {
+      todo[m] = s;
+      todo[m++].a0 = b->a1 + 1;
+    }
+  }
+  scan_spans(i, todo, m);
+}
+
+// A shear event (shear_schedule): the shift has passed a period, or D a multiple of the cell
+// width; at a tick, the new pairs across every row boundary
 void EDCore::shear_tick()
 {
   now = shear_next;
   const int dir = opt.shear_rate > 0.0 ? 1 : -1;
-  shear_m += dir;
-  if (shear_m == nc[0]) {
-    shear_m = 0;
-    shear_relabel(1);
-  } else if (shear_m < 0) {
-    shear_m = nc[0] - 1;
-    shear_relabel(-1);
+  const int ny = nc[1];
+  if (shear_wraps) {
+    shear_relabel(dir);
+    if (shear_w >= 0 && shear_w < ny) {
+      shear_schedule();
+      return;
+    }
+    row_relabel(dir);    // (D has passed its period with the shift: a tick)
+    shear_m = dir > 0 ? 0 : nc[0] - 1;
+  } else {
+    shear_m += dir;
   }
-  const double edge = (dir > 0 ? shear_m + 1 : shear_m) * cw[0];
-  shear_next = std::max(now, (edge - shear_s0) / opt.shear_rate);
-  // each top-row cell A and the bottom-row cell that has just come next to it (one period up
-  // in y): the first of sheared_row's 4 (dir > 0) or the last (dir < 0), in each z row next
-  // to A's
-  const int top = nc[1] - 1, zr = opt.dim == 3 ? 1 : 0;
+  shear_schedule();
+  // each cell A and the cell of the row above that has just come next to it: the first of its
+  // 4 (dir > 0) or the last (dir < 0), in each z row next to A's
+  const int zr = opt.dim == 3 ? 1 : 0;
+  const long n0 = nc[0];
   for (int a2 = 0; a2 < nc[2]; a2++)
-    for (int a0 = 0; a0 < nc[0]; a0++) {
-      const int A = (a2 * nc[1] + top) * nc[0] + a0;
-      if (head[A] < 0) continue;
-      int u[4], k[4];
-      sheared_row(a0, 1, u, k);
-      const int e = dir > 0 ? 0 : 3;
-      for (int dz = -zr; dz <= zr; dz++) {
-        int b2 = a2 + dz, kz = 0;
-        if (b2 < 0 || b2 >= nc[2]) {
-          if (!opt.periodic[2]) continue;
-          kz = b2 < 0 ? -1 : 1;
-          b2 -= kz * nc[2];
-        }
-        const int B = (b2 * nc[1]) * nc[0] + u[e];
-        for (int i = head[A]; i >= 0; i = images[i].next) {
-          const int *pk = images[i].k;
-          for (int j = head[B]; j >= 0; j = images[j].next) {
-            const int *qk = images[j].k;
-            const double ti = schedules[i].ct, tj = schedules[j].ct;
-            offer_both(i, j, pk[0] + k[e] - qk[0], pk[1] + 1 - qk[1], pk[2] + kz - qk[2]);
-            if (schedules[i].ct != ti) reschedule(i);
-            if (schedules[j].ct != tj) reschedule(j);
+    for (int a1 = 0; a1 < ny; a1++) {
+      const int b1 = a1 + 1 == ny ? 0 : a1 + 1, ky = a1 + 1 == ny ? 1 : 0;
+      for (int a0 = 0; a0 < nc[0]; a0++) {
+        const int A = (a2 * ny + a1) * nc[0] + a0;
+        if (head[A] < 0) continue;
+        const long b = (dir > 0 ? a0 - shear_m - 2 : a0 - shear_m + 1) + ky * (long) shear_w * n0;
+        const long kx = floor_div(b, n0);
+        const int b0 = (int) (b - kx * n0);
+        for (int dz = -zr; dz <= zr; dz++) {
+          int b2 = a2 + dz, kz = 0;
+          if (b2 < 0 || b2 >= nc[2]) {
+            if (!opt.periodic[2]) continue;
+            kz = b2 < 0 ? -1 : 1;
+            b2 -= kz * nc[2];
+          }
+          const int B = (b2 * ny + b1) * nc[0] + b0;
+          for (int i = head[A]; i >= 0; i = images[i].next) {
+            const int *pk = images[i].k;
+            for (int j = head[B]; j >= 0; j = images[j].next) {
+              const int *qk = images[j].k;
+              const double ti = schedules[i].ct, tj = schedules[j].ct;
+              offer_both(i, j, pk[0] + (int) kx - qk[0], pk[1] + ky - qk[1], pk[2] + kz - qk[2]);
+              if (schedules[i].ct != ti) reschedule(i);
+              if (schedules[j].ct != tj) reschedule(j);
+            }
           }
         }
       }
     }
 }
 
-// the shift less dir periods of x: a particle's x image and every image shift in x gain dir
-// times their y image (the same displacement, o_x L_x + o_y s, with s less dir L_x)
+// the shift less dir periods of x (w gains dir): a particle's x image and every image shift in
+// x gain dir times their y image (the same displacement, o_x L_x + o_y s, with s less dir L_x)
 void EDCore::shear_relabel(int dir)
 {
   shear_s0 -= dir * P.x;
+  shear_w += dir;
   const int n = (int) schedules.size();
   for (int i = 0; i < n; i++) {
     Schedule &s = schedules[i];
@@ -108,6 +230,15 @@ void EDCore::shear_relabel(int dir)
     s.coff[0] += dir * s.coff[1];
     s.last_off[0] += dir * s.last_off[1];
   }
+}
+
+// D less dir periods of x (w back to the other end): the row c1 is shifted c1 periods less, and
+// the x images of its particles gain dir c1 (image shifts of pairs are displacements and stay)
+void EDCore::row_relabel(int dir)
+{
+  shear_w -= dir * nc[1];
+  const int n = (int) schedules.size();
+  for (int i = 0; i < n; i++) images[i].k[0] += dir * schedules[i].c[1];
 }
 
 }    // namespace granfric
