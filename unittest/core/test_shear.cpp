@@ -155,6 +155,25 @@ TEST(Shear, QueueKeptAcrossWindowsEqualsReference)
   }
 }
 
+// A sheared slab between walls on the z faces (the walls a sheared box allows), under gravity
+// along -z: z is not periodic, so the rows of cells next to the walls have no layer beyond them
+TEST(Shear, SlabBetweenZWallsEqualsReference)
+{
+  for (double rate : {2.0, -1.0}) {
+    Reference ref = sheared_system(ShearCase{1, 3, 150, 0.2, rate, 0, 0}, 61 + (rate > 0));
+    ref.periodic[2] = false;
+    ref.walls.push_back({2, -1, ref.lo.z - 0.6, LawParams::walton(0.8, 0.3, 0.4)});
+    ref.walls.push_back({2, +1, ref.lo.z + ref.L.z + 0.6, LawParams::rough(0.9, 0.0)});
+    ref.gravity = Vec3(0.0, 0.0, -0.3);
+    CoreRun run(ref);
+    run.ed.set_shear_shift(ref.shift0);
+    const double dt = 0.45 * mean_free_time(ref);
+    kept_queue_equals_reference(ref, run, dt, 12);
+    EXPECT_GT(ref.wall_collisions, 10);
+    EXPECT_EQ(run.total.wall_collisions, ref.wall_collisions);
+  }
+}
+
 // a static tilt (shift without rate): the same as the reference's tilted lattice
 TEST(Shear, StaticTiltEqualsReference)
 {
