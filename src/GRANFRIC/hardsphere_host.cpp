@@ -86,7 +86,10 @@ namespace hardsphere {
   bool ShearWrap::match(const double *b, double bvx, const double *w, double wvx, int *k, double *c,
                         double &cvx) const
   {
-    if (b[0] == w[0] && b[1] == w[1] && b[2] == w[2] && bvx == wvx) {    // (as written: no wrap)
+    // (as written, or rounded as a reneighboring rounds most atoms every step: no wrap, and
+    // every test below would give the same)
+    if (bvx == wvx && std::fabs(b[0] - w[0]) <= tolx && wrap.unwrapped(1, b[1], w[1]) &&
+        wrap.unwrapped(2, b[2], w[2])) {
       for (int d = 0; d < 3; d++) k[d] = 0, c[d] = w[d];
       cvx = wvx;
       return true;

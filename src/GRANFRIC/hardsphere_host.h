@@ -97,6 +97,13 @@ namespace hardsphere {
           }
       return false;
     }
+    // would match() find b to be w itself (k = 0, c = w)? The test of the usual case, which
+    // skips the wrapped candidates: b within the rounding of w, and not the box's lower edge
+    // (which match() takes for w wrapped down to it)
+    bool unwrapped(int d, double b, double w) const
+    {
+      return b == w || (std::fabs(b - w) <= tol[d] && b != boxlo[d]);
+    }
 
    private:
     double lo[3], hi[3], boxlo[3], L[3];

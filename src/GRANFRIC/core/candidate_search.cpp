@@ -66,16 +66,25 @@ void EDCore::scan_spans_t(int i, const RowSpan *s, int n)
   }
   const CellImage *IM = images.data();
   const int n0 = nc[0];
+  // the occupied cells of every row, in order, gathered first without a branch per cell (which
+  // cells are empty is random), as scan_t() does: each with its x image and row
+  int first[9 * 4], qs[9 * 4], rs[9 * 4], nf = 0;
   for (int r = 0; r < n; r++) {
     const RowSpan &w = s[r];
-    const int *row = head.data() + (w.cz * nc[1] + w.cy) * n0;
-    int q = (int) floor_div(w.a0, n0), u = (int) (w.a0 - (long) q * n0);
+    const int *row = head.data() + w.row;
+    int q = w.q, u = w.u;
     for (long a = w.a0; a <= w.a1; a++) {
-      for (int j = row[u]; j >= 0; j = IM[j].next)
-        if (j != i)
-          offer<DIM, GRAV, LATEST, true>(k, j, q - IM[j].k[0], w.ky - IM[j].k[1], DIM == 3 ? w.kz - IM[j].k[2] : 0);
+      const int j = row[u];
+      first[nf] = j, qs[nf] = q, rs[nf] = r;
+      nf += j >= 0;
       if (++u == n0) u = 0, q++;
     }
+  }
+  for (int f = 0; f < nf; f++) {
+    const RowSpan &w = s[rs[f]];
+    for (int j = first[f]; j >= 0; j = IM[j].next)
+      if (j != i)
+        offer<DIM, GRAV, LATEST, true>(k, j, qs[f] - IM[j].k[0], w.ky - IM[j].k[1], DIM == 3 ? w.kz - IM[j].k[2] : 0);
   }
   settle(k);
 }
@@ -275,22 +284,21 @@ bool EDCore::offer_spans_lanes(Seek &k, const RowSpan *s, int n)
   int js[LANE_BUFFER], nj = 0;
   ListEntry buf[LANE_BUFFER];
   int nb = 0, wide = 0;
+  // (the occupied cells of the rows at i's own image, in order, gathered first without a branch
+  // per cell, as scan_t() does; their candidates go to the lanes after the other rows')
+  int first[9 * 4], nf = 0;
   for (int r = 0; r < n; r++) {
     const RowSpan &w = s[r];
-    const int *row = head.data() + (w.cz * nc[1] + w.cy) * nc[0];
+    const int *row = head.data() + w.row;
     if (w.ky == pk[1] && w.kz == pk[2] && w.a0 >= lo && w.a1 < lo + n0) {
-      for (long a = w.a0; a <= w.a1; a++)
-        for (int j = row[a - lo]; j >= 0; j = IM[j].next) {
-          js[nj] = j;
-          nj += j != i;
-          if (nj == LANE_BUFFER) {
-            offer_lanes<LATEST, true, true>(k, nullptr, js, nj);
-            nj = 0;
-          }
-        }
+      for (long a = w.a0; a <= w.a1; a++) {
+        const int j = row[a - lo];
+        first[nf] = j;
+        nf += j >= 0;
+      }
       continue;
     }
-    int q = (int) floor_div(w.a0, n0), u = (int) (w.a0 - (long) q * n0);
+    int q = w.q, u = w.u;
     for (long a = w.a0; a <= w.a1; a++) {
       for (int j = row[u]; j >= 0; j = IM[j].next) {
         const int o0 = q - IM[j].k[0], o1 = w.ky - IM[j].k[1], o2 = w.kz - IM[j].k[2];
@@ -310,6 +318,15 @@ bool EDCore::offer_spans_lanes(Seek &k, const RowSpan *s, int n)
       if (++u == n0) u = 0, q++;
     }
   }
+  for (int f = 0; f < nf; f++)
+    for (int j = first[f]; j >= 0; j = IM[j].next) {
+      js[nj] = j;
+      nj += j != i;
+      if (nj == LANE_BUFFER) {
+        offer_lanes<LATEST, true, true>(k, nullptr, js, nj);
+        nj = 0;
+      }
+    }
   offer_lanes<LATEST, true, true>(k, nullptr, js, nj);
   offer_lanes<LATEST, false, true>(k, buf, nullptr, nb);
   return true;
@@ -505,7 +522,7 @@ long EventDriven::overlaps(double tol, long &key_i, long &key_j, double &depth) 
       for (int r = 0; r < ns; r++)
         for (long a = sp[r].a0; a <= sp[r].a1; a++) {
           const long q = floor_div(a, nc[0]);
-          const int cell = (sp[r].cz * nc[1] + sp[r].cy) * nc[0] + (int) (a - q * nc[0]);
+          const int cell = sp[r].row + (int) (a - q * nc[0]);
           for (int j = head[cell]; j >= 0; j = images[j].next)
             test(j, (int) q - images[j].k[0], sp[r].ky - images[j].k[1], sp[r].kz - images[j].k[2]);
         }

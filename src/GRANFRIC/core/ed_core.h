@@ -328,13 +328,23 @@ class EDCore {
   double row_step(double t) const { return (shift_at(t) + shear_w * P.x) / nc[1]; }    // D(t)
   double row_shift(int r, double t) const { return r * row_step(t); }
   double row_speed(int r) const { return r * (opt.shear_rate / nc[1]); }
-  // the cells a particle's scan takes in a sheared box: per row next to it (y cell cy at y
-  // image ky, z cell cz at z image kz), the x cells a0..a1 counted across images (cell
-  // a - q nc[0] at x image q = floor(a / nc[0])), 3 in its own row, 4 in the rows above and below
+  // the cells a particle's scan takes in a sheared box: per row next to it (its first cell in
+  // head at row, at y image ky and z image kz; dz the z layer against i's), the x cells a0..a1
+  // counted across images (cell a - q nc[0] at x image q = floor(a / nc[0])), 3 in its own row,
+  // 4 in the rows above and below; a0 is cell u at x image q (start_at moves the start on by a
+  // few cells)
   struct RowSpan {
-    int dy, dz, cy, ky, cz, kz;
+    int dz, ky, kz, row, q, u;
     long a0, a1;
+    void start_at(long a, int n0)
+    {
+      u += (int) (a - a0);
+      a0 = a;
+      while (u >= n0) u -= n0, q++;
+    }
   };
+  template <int DIM>
+  int sheared_spans_t(int i, RowSpan out[9]) const;
   int sheared_spans(int i, RowSpan out[9]) const;
   static long floor_div(long a, long n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
   template <int DIM, bool GRAV, bool LATEST>

@@ -82,21 +82,33 @@ void EDCore::shear_cells()
 // the row below, the 4 from c0 + m - 1 on. Across a y face the row is that of the image up or
 // down, w periods of x further (s - (n_y - 1) D = D - w L_x). Counted across images: x cell a
 // of a row is its cell a - q nc[0] at x image q.
-int EDCore::sheared_spans(int i, RowSpan out[9]) const
+template <int DIM>
+inline __attribute__((always_inline)) int EDCore::sheared_spans_t(int i, RowSpan out[9]) const
 {
   const int16_t *c = schedules[i].c;
   const int *pk = images[i].k;
-  const long n0 = nc[0], C = c[0] + n0 * pk[0], face = (long) shear_w * n0;
-  // the rows below, at and above i's (y cell, y image, first x cell)
+  const int n0 = nc[0], n1 = nc[1];
+  const long C = c[0] + (long) n0 * pk[0], face = (long) shear_w * n0;
+  // the rows below, at and above i's (y cell, y image, first x cell: counted across images,
+  // and as cell u at x image q, found without a division)
   int cy[3] = {c[1] - 1, c[1], c[1] + 1}, ky[3] = {pk[1], pk[1], pk[1]};
   long a0[3] = {C + shear_m - 1, C - 1, C - shear_m - 2};
-  if (cy[0] < 0) cy[0] += nc[1], ky[0]--, a0[0] -= face;
-  if (cy[2] >= nc[1]) cy[2] -= nc[1], ky[2]++, a0[2] += face;
+  int u[3] = {c[0] + shear_m - 1, c[0] - 1, c[0] - shear_m - 2}, q[3] = {pk[0], pk[0], pk[0]};
+  if (cy[0] < 0) cy[0] += n1, ky[0]--, a0[0] -= face, q[0] -= shear_w;
+  if (cy[2] >= n1) cy[2] -= n1, ky[2]++, a0[2] += face, q[2] += shear_w;
+  for (int r = 0; r < 3; r++) {
+    if (u[r] < 0) {
+      u[r] += n0, q[r]--;
+      if (u[r] < 0) u[r] += n0, q[r]--;    // (the row above: down to -nc[0] - 1)
+    } else if (u[r] >= n0) {
+      u[r] -= n0, q[r]++;
+    }
+  }
   int n = 0;
-  const int zr = opt.dim == 3 ? 1 : 0;
+  const int zr = DIM == 3 ? 1 : 0;
   for (int dz = -zr; dz <= zr; dz++) {
     int cz = c[2] + dz, kz = pk[2];
-    if (cz < 0 || cz >= nc[2]) {
+    if (DIM == 3 && (cz < 0 || cz >= nc[2])) {
       if (!opt.periodic[2]) continue;
       const int e = cz < 0 ? -1 : 1;
       cz -= e * nc[2];
@@ -104,12 +116,18 @@ int EDCore::sheared_spans(int i, RowSpan out[9]) const
     }
     for (int r = 0; r < 3; r++) {
       RowSpan &s = out[n++];
-      s.dy = r - 1, s.dz = dz, s.cy = cy[r], s.ky = ky[r], s.cz = cz, s.kz = kz;
+      s.dz = dz, s.ky = ky[r], s.kz = kz;
+      s.row = (cz * n1 + cy[r]) * n0, s.q = q[r], s.u = u[r];
       s.a0 = a0[r];
       s.a1 = a0[r] + (r == 1 ? 2 : 3);
     }
   }
   return n;
+}
+
+int EDCore::sheared_spans(int i, RowSpan out[9]) const
+{
+  return opt.dim == 3 ? sheared_spans_t<3>(i, out) : sheared_spans_t<2>(i, out);
 }
 
 // scan() in a sheared box: every row next to i (full), or the cells that a crossing in x or z
@@ -118,10 +136,10 @@ int EDCore::sheared_spans(int i, RowSpan out[9]) const
 void EDCore::scan_sheared(int i, bool full, const int dlo[3], const int dhi[3])
 {
   RowSpan s[9];
-  int n = sheared_spans(i, s);
+  int n = opt.dim == 3 ? sheared_spans_t<3>(i, s) : sheared_spans_t<2>(i, s);
   if (!full && dlo[0] == dhi[0]) {
     for (int r = 0; r < n; r++) {
-      if (dlo[0] > 0) s[r].a0 = s[r].a1;
+      if (dlo[0] > 0) s[r].start_at(s[r].a1, nc[0]);
       else s[r].a1 = s[r].a0;
     }
   } else if (!full && opt.dim == 3 && dlo[2] == dhi[2]) {
@@ -144,7 +162,7 @@ void EDCore::scan_new_spans(int i, const RowSpan *before, int nbefore)
     const RowSpan &s = now_[r];
     const RowSpan *b = nullptr;
     for (int q = 0; q < nbefore && !b; q++)
-      if (before[q].cy == s.cy && before[q].ky == s.ky && before[q].cz == s.cz && before[q].kz == s.kz)
+      if (before[q].row == s.row && before[q].ky == s.ky && before[q].kz == s.kz)
         b = &before[q];
     if (!b || b->a1 < s.a0 || s.a1 < b->a0) {
       todo[m++] = s;
@@ -156,7 +174,7 @@ void EDCore::scan_new_spans(int i, const RowSpan *before, int nbefore)
     }
     if (s.a1 > b->a1) {
       todo[m] = s;
-      todo[m++].a0 = b->a1 + 1;
+      todo[m++].start_at(b->a1 + 1, nc[0]);
     }
   }
   scan_spans(i, todo, m);
