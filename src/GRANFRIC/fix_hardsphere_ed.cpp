@@ -64,6 +64,12 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, n
       if (set.maxevents < 1)
         error->all(FLERR, "Fix hardsphere/ed maxevents = {} must be >= 1", set.maxevents);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "maxcross") == 0) {
+      if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed maxcross", error);
+      set.maxcross = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (set.maxcross < 1 || set.maxcross > 2000000000L)
+        error->all(FLERR, "Fix hardsphere/ed maxcross = {} must be 1 to 2e9", set.maxcross);
+      iarg += 2;
     } else if (strcmp(arg[iarg], "parallel") == 0) {
       if (iarg + 2 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/ed parallel", error);
       parallel = choice("parallel", arg[iarg + 1], {"domain", "gather"}) == 0 ? DOMAIN : GATHER;
@@ -84,7 +90,7 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, n
       set.allow_overlap = choice("overlap", arg[iarg + 1], {"error", "allow"}) == 1;
       iarg += 2;
     } else {
-      error->all(FLERR, "Unknown fix hardsphere/ed keyword: {} (allowed: gravity, tc, maxevents, "
+      error->all(FLERR, "Unknown fix hardsphere/ed keyword: {} (allowed: gravity, tc, maxevents, maxcross, "
                  "parallel, reach, check, overlap)", arg[iarg]);
     }
   }
@@ -281,6 +287,7 @@ void FixHardsphereED::setup(int vflag)
   check_plane();
   check_atoms_between_walls();
   check_scales();
+  warned_fast = false;
   run->new_run();
 }
 
@@ -352,6 +359,7 @@ void FixHardsphereED::initial_integrate(int vflag)
     gwin->run(t0, dt, false);
   }
   run->finish_window(dt);
+  warn_fast_atoms();
 }
 
 double FixHardsphereED::compute_vector(int n)

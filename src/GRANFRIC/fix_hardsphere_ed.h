@@ -3,7 +3,8 @@
    Copyright (C) 2026 The GRANFRIC developers; see LICENSE and CITATION.cff.
    GRANFRIC: fix hardsphere/ed, the exact event-driven integrator for hard spheres and discs.
 
-   fix ID group hardsphere/ed [gravity gx gy gz] [tc t_c] [maxevents N] [parallel domain|gather]
+   fix ID group hardsphere/ed [gravity gx gy gz] [tc t_c] [maxevents N] [maxcross N]
+                              [parallel domain|gather]
                               [reach f] [check yes|no] [overlap error|allow]
 
    Each time step is a window in which every collision is processed in exact time order with the
@@ -136,6 +137,8 @@ class FixHardsphereED : public Fix {
   void check_scales() const;
   void check_thermal_walls(double mmax, double amax) const;
   void warn_ignored_inputs() const;
+  void warn_fast_atoms();                  // (after each window)
+  bool warned_fast = false;                // (once per run)
   bigint plane_checked = -1;               // the number of atoms the last check_plane saw
   static constexpr tagint NOATOM = MAXTAGINT;
   tagint first_atom(const std::function<bool(int)> &bad) const;

@@ -50,15 +50,15 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
 }
 
 // Absurd speeds, accelerations, steps and wall temperatures end at the start of the run, not
-// after the event cap's maxevents x atoms cell crossings (minutes): the atoms' paths in one
-// step (speed, gravity, the speed a moving or thermal wall or the kicks give) summed over the
-// atoms, in the largest diameters (the narrowest cells), against that cap; lengths times speeds
+// after the crossing cap's maxcross x atoms cell crossings: the atoms' paths in one step (speed,
+// gravity, the speed a moving or thermal wall or the kicks give) summed over the atoms, in the
+// largest diameters (the narrowest cells), against that cap; lengths times speeds
 // that would overflow the contact-time arithmetic; and thermal walls under gravity
 // (check_thermal_walls).
 void FixHardsphereED::check_scales() const
 {
   const double *gravity = run->settings.gravity;
-  const long maxevents = run->settings.maxevents;
+  const long maxcross = run->settings.maxcross;
   // (over all atoms: the summed speed; the largest speed, mass, radius and inverse mass)
   double sum = 0.0, mx[4] = {0.0, 0.0, 0.0, 0.0};
   for (int i = 0; i < atom->nlocal; i++) {
@@ -90,13 +90,13 @@ void FixHardsphereED::check_scales() const
   // (the shear named only in a sheared box)
   const std::string shear = vshear > 0.0 ? host::format("{:.3g} from the shear, ", vshear) : "";
   const std::string rate = vshear > 0.0 ? "the shear rate (fix deform's erate or vel), " : "";
-  if (!(mean / (2.0 * mx[1]) <= (double) maxevents))
+  if (!(mean / (2.0 * mx[1]) <= (double) maxcross))
     error->all(FLERR, "Fix hardsphere/ed: the atoms would travel {:.3g} diameters per step on "
                "average (mean speed {:.3g}, {:.3g} from moving or thermal walls, {:.3g} from kicks, "
-               "{}gravity {:.3g}, timestep {:.3g}), more cells than the event cap maxevents = {} "
+               "{}gravity {:.3g}, timestep {:.3g}), more cells than the crossing cap maxcross = {} "
                "allows each atom in a step: lower the speeds, the walls' speed or temperature, the "
                "kicks' v_dr, {}gravity or the timestep", mean / (2.0 * mx[1]), sum / n, vwall, vkick,
-               shear, g, dt, maxevents, rate);
+               shear, g, dt, maxcross, rate);
   // (a contact time takes squares of distances and speeds, and of their products)
   const double L = std::max({domain->prd[0], domain->prd[1], domain->dimension == 3 ? domain->prd[2] : 0.0});
   const double vtop = mx[3] + vwall + vkick + vshear + g * dt;
@@ -133,6 +133,24 @@ void FixHardsphereED::check_thermal_walls(double mmax, double amax) const
                "for longer than a step / maxevents = {:.3g}", w->wall_id(),
                e.T * force->mvv2e / force->boltz, toward, why, dt / maxevents);
   }
+}
+
+// A step whose cell crossings reach a tenth of the crossing cap: the atoms move far faster than
+// the system's scale, so that a step costs about as many crossings as the cap allows a tenth
+// of. Energy may be running away (the cap will then stop the run), or steps are meant that long:
+// warned once per run, as soon as it happens (the crossings summed over the ranks' windows)
+void FixHardsphereED::warn_fast_atoms()
+{
+  if (warned_fast || atom->natoms == 0) return;
+  const long maxcross = run->settings.maxcross;
+  const double per_atom = (double) run->last.crossings / (double) atom->natoms;
+  if (!(per_atom >= 0.1 * (double) maxcross)) return;
+  warned_fast = true;
+  if (comm->me == 0)
+    error->warning(FLERR, "Fix hardsphere/ed {}: in step {} the atoms crossed cells {:.3g} times each, "
+                   "a tenth or more of the crossing cap maxcross = {}: they move far faster than the "
+                   "system's scale (is energy running away, e.g. pumped in by a fast moving wall?), "
+                   "and the run stops when a step exceeds the cap", id, update->ntimestep, per_atom, maxcross);
 }
 
 // rerun computes from snapshots, between which hard particles collide: the collisions (their

@@ -293,10 +293,12 @@ void HardsphereGatherWindow::advance(double T1)
     valid = false;
     if (e.kind == granfric::EventCapError::CROSSINGS)
       error->all(FLERR,
-                 "Fix hardsphere/ed: {} cell crossings within step {} exceed maxevents x atoms "
+                 "Fix hardsphere/ed: {} cell crossings within step {} exceed maxcross x atoms "
                  "= {}; atom {} was crossing at speed {:.6g}: atoms move far faster than the system's "
                  "scale (did a collision law create energy, e.g. hardsphere/jz with kappa_d > "
-                 "kappa_s, or does an atom start much faster than the others?)",
+                 "kappa_s, does a moving wall pump energy in without bound, e.g. a fast vibrating "
+                 "wall with elastic collisions, or does an atom start much faster than the others? "
+                 "Raise maxcross only if such speeds are meant)",
                  e.n, update->ntimestep, e.n - 1, (tagint) otags[e.i], e.speed);
     const std::string partner = e.j < 0 ? host::format("fix hardsphere/wall {}", state.walls[-1 - e.j]->wall_id())
                                         : host::format("atom {}", (tagint) otags[e.j]);

@@ -41,6 +41,7 @@ granfric::EDOptions HardsphereRunState::core_options() const
   o.gravity = granfric::Vec3(settings.gravity[0], settings.gravity[1], settings.gravity[2]);
   o.tc = settings.tc;
   o.max_collisions = settings.maxevents;
+  o.max_crossings = settings.maxcross;
   o.gamma_bins = settings.gamma_bins;
   for (auto *w : walls) o.walls.push_back(w->wall());
   o.shape.assign(atom->ntypes + 1, 0.4);

@@ -61,6 +61,7 @@ class HardsphereRunState : protected Pointers {
     double gravity[3] = {0.0, 0.0, 0.0};
     double tc = 0.0;                      // TC model duration (0: off)
     long maxevents = 1000000;             // collisions per atom and step (collapse guard)
+    long maxcross = 10000;                // cell crossings per atom and step, summed (runaway guard)
     bool allow_overlap = false;           // overlapping pairs separate (else an error)
     int gamma_bins = 0;                   // impact-angle histogram bins (0: none)
   } settings;

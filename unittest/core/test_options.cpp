@@ -102,7 +102,7 @@ TEST(Options, DescriptionNamesEveryField)
 {
   const std::string d = walled_box().describe();
   for (const char *name : {"dim ", "lo (0 0 0)", "hi (1 1 1)", "periodic (true false true)", "open ",
-                           "period ", "gravity (0 0 0)", "tc 0", "max_collisions 1000000",
+                           "period ", "gravity (0 0 0)", "tc 0", "max_collisions 1000000", "max_crossings 10000",
                            "gamma_bins ", "walls [{dim 1, side -1, pos 0, laws [{kind 0, r 0.90000000000000002",
                            "shape []", "cell_width ", "neighbours 0", "list_skin ", "simd true",
                            "prefetch_bytes ", "tick_last 4294967294"})

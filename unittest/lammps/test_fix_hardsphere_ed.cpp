@@ -589,7 +589,7 @@ TEST(FixHardsphereED, EndlessElasticCollisionsAreNoCollapse)
 // Energy that runs away (Jenkins-Zhang with kappa_d > kappa_s; the temperature grows from 1 to
 // ~150 in 35 steps and then without bound) stops with an error that names energy creation, not
 // inelastic collapse, within bounded time; an atom that crosses cells without end (alone, at
-// 1e8) stops at the cap on cell crossings (maxevents x atoms per step), which names it and its
+// 1e8) stops at the cap on cell crossings (maxcross x atoms per step), which names it and its
 // speed.
 TEST(FixHardsphereED, RunawayAndFastAtomsStopWithClearErrors)
 {
@@ -667,7 +667,7 @@ TEST_F(FixErrors, Keywords)
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed gravity a b 0", "Expected floating point");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed speed 2",
                    "Unknown fix hardsphere/ed keyword: speed \\(allowed: gravity, tc, maxevents, "
-                   "parallel, reach, check, overlap\\)");
+                   "maxcross, parallel, reach, check, overlap\\)");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed parallel fast",
                    "parallel fast is not available \\(allowed: domain, gather\\)");
   EXPECT_LMP_ERROR(lmp.get(), "fix ed all hardsphere/ed check maybe",

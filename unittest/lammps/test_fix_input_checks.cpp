@@ -120,6 +120,28 @@ TEST(InputChecks, ForceFixesAndExclusionsWarned)
             std::string::npos);
 }
 
+// atoms that cross a tenth of maxcross cells each in a step are warned about, once in a run
+// (their speeds could be running away; the cap would stop the run); slower ones not (100 discs
+// at fraction 0.3, cells about a diameter wide, steps of 0.1: at T = 1e4 a disc crosses about
+// 13 cells per step, at T = 1 about 0.1)
+TEST(InputChecks, FastAtomsWarned)
+{
+  const std::string warning = "WARNING: Fix hardsphere/ed ed: in step ";
+  auto gas = [](const std::string &T) {
+    return "units lj\ndimension 2\natom_style sphere\ncomm_modify vel yes\nlattice sq 0.3\n"
+           "region box block 0 10 0 10 -0.5 0.5\ncreate_box 1 box\ncreate_atoms 1 box\n"
+           "set type 1 diameter 1.0\nset type 1 mass 1.0\npair_style hardsphere/rough inertia disc\n"
+           "pair_coeff * * 1.0 -1.0\ntimestep 0.1\nthermo 0\nvelocity all create " + T + " 4321 loop geom\n"
+           "fix ed all hardsphere/ed maxcross 100\nrun 10 post no";
+  };
+  const std::string out = screen_of(gas("1e4"));
+  const size_t at = out.find(warning);
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_NE(out.find("times each, a tenth or more of the crossing cap maxcross = 100:", at), std::string::npos) << out;
+  EXPECT_EQ(out.find(warning, at + 1), std::string::npos) << "once in a run: " << out;
+  EXPECT_EQ(screen_of(gas("1")).find("WARNING"), std::string::npos);
+}
+
 TEST(InputChecks, OverlapKeywordValues)
 {
   auto lmp = make_lammps();

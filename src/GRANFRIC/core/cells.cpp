@@ -377,7 +377,7 @@ void EDCore::count_crossing(int i)
   const double speed = norm(vel(i, now));
   std::ostringstream s;
   s << "cell crossings in one window exceed the cap (" << crossing_cap
-    << " = the collision cap times the number of particles); particle " << ext[i]
+    << " = the crossing cap per particle times the number of particles); particle " << ext[i]
     << " was crossing at speed " << speed;
   throw EventCapError(s.str(), ext[i], ext[i], now, window_crossings, EventCapError::CROSSINGS, speed);
 }

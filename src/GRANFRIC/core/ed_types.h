@@ -128,6 +128,9 @@ struct EDOptions {
   Vec3 gravity;
   double tc = 0.0;                      // TC model duration (0: off)
   long max_collisions = 1000000;        // per particle per window (inelastic-collapse guard)
+  // cell crossings (or list rebuilds) per particle per window, summed over the particles (a
+  // guard against particles far faster than the system's scale: energy that ran away)
+  long max_crossings = 10000;
   int gamma_bins = 0;                   // > 0: histogram of impact angles in (pi/2, pi]
   std::vector<EDWall> walls;            // in non-periodic dimensions
   // moment of inertia / (m a^2) by particle type (index 0 unused), each in (0, 1]; empty:
@@ -180,6 +183,7 @@ struct EDOptions {
     f("periodic", DEFINING, s.periodic...), f("open", DEFINING, s.open...);
     f("period", DEFINING, s.period...), f("gravity", DEFINING, s.gravity...);
     f("tc", DEFINING, s.tc...), f("max_collisions", DEFINING, s.max_collisions...);
+    f("max_crossings", DEFINING, s.max_crossings...);
     f("gamma_bins", DEFINING, s.gamma_bins...), f("walls", DEFINING, s.walls...);
     f("shape", DEFINING, s.shape...), f("cell_width", DEFINING, s.cell_width...);
     f("neighbours", DEFINING, s.neighbours...), f("list_skin", DEFINING, s.list_skin...);
@@ -272,9 +276,9 @@ struct EDParticleTally {
 };
 
 // thrown when a window exceeds its work cap: a particle with more than max_collisions
-// collisions (COLLISIONS: inelastic collapse), or more than max_collisions times the number of
+// collisions (COLLISIONS: inelastic collapse), or more than max_crossings times the number of
 // particles cell crossings or list rebuilds in all (CROSSINGS: particles far faster than the
-// system's scale, e.g. after a law created energy)
+// system's scale, e.g. after a law or a driving wall pumped energy into them)
 class EventCapError : public std::runtime_error {
  public:
   enum Kind { COLLISIONS, CROSSINGS };

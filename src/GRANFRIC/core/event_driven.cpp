@@ -171,7 +171,7 @@ EDStats EventDriven::advance_to(double t_end)
   for (auto &s : schedules) s.ncollisions = 0;
   const int n = (int) flights.size();
   window_crossings = 0;
-  crossing_cap = opt.max_collisions * (long) std::max(1, n);
+  crossing_cap = opt.max_crossings * (long) std::max(1, n);
   refresh();
   if (crossings_since_reorder > 4L * n) reorder();
   copy_keys();

@@ -60,6 +60,8 @@ static void check_options(const EDOptions &o, int nt, const std::vector<LawParam
   if (!(o.list_skin >= 0.0)) throw std::invalid_argument("the list skin must be >= 0");
   if (o.max_collisions < 1 || o.max_collisions > 2000000000L)
     throw std::invalid_argument("the collision cap per particle and window must be 1 to 2e9");
+  if (o.max_crossings < 1 || o.max_crossings > 2000000000L)
+    throw std::invalid_argument("the crossing cap per particle and window must be 1 to 2e9");
   if (!std::isfinite(o.shear_rate) || (o.shear_rate != 0.0 && !o.shear))
     throw std::invalid_argument("a shear rate needs shear on, and a finite value");
   if (o.shear && !(o.periodic[0] && o.periodic[1]))
