@@ -136,9 +136,9 @@ void FixHardsphereED::check_thermal_walls(double mmax, double amax) const
 }
 
 // A step whose cell crossings reach a tenth of the crossing cap: the atoms move far faster than
-// the system's scale, so that a step costs about as many crossings as the cap allows a tenth
-// of. Energy may be running away (the cap will then stop the run), or steps are meant that long:
-// warned once per run, as soon as it happens (the crossings summed over the ranks' windows)
+// the system's scale. Energy may be running away (the cap will then stop the run), or steps are
+// meant that long: warned once per run, as soon as it happens (the crossings summed over the
+// ranks' windows)
 void FixHardsphereED::warn_fast_atoms()
 {
   if (warned_fast || atom->natoms == 0) return;

@@ -331,8 +331,8 @@ class EDCore {
   // the cells a particle's scan takes in a sheared box: per row next to it (its first cell in
   // head at row, at y image ky and z image kz; dz the z layer against i's), the x cells a0..a1
   // counted across images (cell a - q nc[0] at x image q = floor(a / nc[0])), 3 in its own row,
-  // 4 in the rows above and below; a0 is cell u at x image q (start_at moves the start on by a
-  // few cells)
+  // 4 in the rows above and below (the scans gather at most 9 x 4 cells); a0 is cell u at x
+  // image q (start_at moves the start on by a few cells)
   struct RowSpan {
     int dz, ky, kz, row, q, u;
     long a0, a1;
