@@ -135,7 +135,8 @@ class FixHardsphereED : public Fix {
   void check_plane();                      // (2d: every atom at z = 0, vz = 0, spin about z)
   void refuse_rerun() const;
   void check_scales() const;
-  void check_thermal_walls(double mmax, double amax) const;
+  void check_resting_walls(double mmax, double amax) const;
+  int plastic_type(const granfric::EDWall &w) const;
   void warn_ignored_inputs() const;
   void warn_fast_atoms();                  // (after each window)
   bool warned_fast = false;                // (once per run)

@@ -53,8 +53,8 @@ double FixHardsphereED::atom_value(tagint who, const std::function<double(int)> 
 // after the crossing cap's maxcross x atoms cell crossings: the atoms' paths in one step (speed,
 // gravity, the speed a moving or thermal wall or the kicks give) summed over the atoms, in the
 // largest diameters (the narrowest cells), against that cap; lengths times speeds
-// that would overflow the contact-time arithmetic; and thermal walls under gravity
-// (check_thermal_walls).
+// that would overflow the contact-time arithmetic; and walls that would hold grains at rest under
+// gravity (check_resting_walls).
 void FixHardsphereED::check_scales() const
 {
   const double *gravity = run->settings.gravity;
@@ -73,7 +73,7 @@ void FixHardsphereED::check_scales() const
   MPI_Allreduce(MPI_IN_PLACE, mx, 4, MPI_DOUBLE, MPI_MAX, world);
   const double n = (double) atom->natoms;
   if (n == 0.0) return;
-  check_thermal_walls(mx[0], mx[1]);
+  check_resting_walls(mx[0], mx[1]);
   const double dt = update->dt, g = std::hypot(gravity[0], gravity[1], gravity[2]);
   double wmax = 0.0, tmax = 0.0;    // the fastest wall's speed, the hottest wall's temperature
   for (auto *w : run->walls) {
@@ -107,10 +107,12 @@ void FixHardsphereED::check_scales() const
                "which lengths and speeds are nearer 1", L, vtop, L * vtop);
 }
 
-// A thermal wall under gravity toward it holds the grains it re-emits at rest (T = 0) or
-// nearly (they hop less than a millionth of a diameter high, or maxevents times and more per
-// step): refused (mmax, amax: the heaviest mass, the largest radius)
-void FixHardsphereED::check_thermal_walls(double mmax, double amax) const
+// A wall under gravity toward it that holds the grains landing on it at rest: a thermal wall
+// at T = 0, or nearly (the grains it re-emits hop less than a millionth of a diameter high, or
+// maxevents times and more per step), or a wall whose law stops the normal motion (restitution
+// 0, which the TC model cannot undo: reversing a zero speed leaves it zero). Refused: a grain at
+// rest on a wall collides with it without end (mmax, amax: the heaviest mass, the largest radius)
+void FixHardsphereED::check_resting_walls(double mmax, double amax) const
 {
   const double *gravity = run->settings.gravity;
   const long maxevents = run->settings.maxevents;
@@ -118,21 +120,42 @@ void FixHardsphereED::check_thermal_walls(double mmax, double amax) const
   for (auto *w : run->walls) {
     const granfric::EDWall e = w->geometry();
     const double toward = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
-    if (e.T < 0.0 || !(toward > 0.0)) continue;
-    // a grain re-emitted at T hops for about 2 sqrt(T/m)/g, kT/(m g) high
-    const double hop = 2.0 * std::sqrt(e.T / mmax) / toward, height = e.T / (mmax * toward);
-    if (hop * maxevents > dt && height > 1e-6 * 2.0 * amax) continue;
-    const std::string why = e.T == 0.0
-        ? std::string("the grains it re-emits stay at rest on it")
-        : host::format("a grain of mass {} it re-emits hops {:.3g} diameters high, for {:.3g} (about {:.3g} "
-                       "times per step of {}): it stays practically at rest on the wall", mmax,
-                       height / (2.0 * amax), hop, dt / hop, dt);
-    error->all(FLERR, "Fix hardsphere/wall {} (thermal at T = {}) under gravity {} toward it: {}, "
-               "which event-driven motion can only follow by colliding without end. Give it a "
-               "temperature at which the grains hop at least a millionth of a diameter high and "
-               "for longer than a step / maxevents = {:.3g}", w->wall_id(),
-               e.T * force->mvv2e / force->boltz, toward, why, dt / maxevents);
+    if (!(toward > 0.0)) continue;
+    std::string why;
+    if (e.T < 0.0) {
+      const int type = plastic_type(w->wall());
+      if (type == 0) continue;
+      why = host::format("its collision law for atoms of type {} has normal restitution 0, so a "
+                         "grain that lands on it stops and stays at rest on it", type);
+    } else {
+      // a grain re-emitted at T hops for about 2 sqrt(T/m)/g, kT/(m g) high
+      const double hop = 2.0 * std::sqrt(e.T / mmax) / toward, height = e.T / (mmax * toward);
+      if (hop * maxevents > dt && height > 1e-6 * 2.0 * amax) continue;
+      why = e.T == 0.0
+          ? std::string("(thermal at T = 0) the grains it re-emits stay at rest on it")
+          : host::format("(thermal at T = {}) a grain of mass {} it re-emits hops {:.3g} diameters "
+                         "high, for {:.3g} (about {:.3g} times per step of {}): it stays practically "
+                         "at rest on the wall", e.T * force->mvv2e / force->boltz, mmax,
+                         height / (2.0 * amax), hop, dt / hop, dt);
+    }
+    error->all(FLERR, "Fix hardsphere/wall {} under gravity {} toward it: {}, which event-driven "
+               "motion can only follow by colliding without end. For a floor on which grains "
+               "settle, make it thermal at a temperature at which they hop at least a millionth "
+               "of a diameter high and for longer than a step / maxevents = {:.3g} (see the fix "
+               "hardsphere/wall page, 'Grains at rest on a floor')", w->wall_id(), toward, why,
+               dt / maxevents);
   }
+}
+
+// The lowest atom type present whose law with the wall has normal restitution 0 (0: none)
+int FixHardsphereED::plastic_type(const granfric::EDWall &w) const
+{
+  std::vector<int> present(atom->ntypes + 1, 0);
+  for (int i = 0; i < atom->nlocal; i++) present[atom->type[i]] = 1;
+  MPI_Allreduce(MPI_IN_PLACE, present.data(), atom->ntypes + 1, MPI_INT, MPI_MAX, world);
+  for (int t = 1; t <= atom->ntypes; t++)
+    if (present[t] && w.laws[t].r == 0.0 && w.laws[t].visco == 0.0) return t;
+  return 0;
 }
 
 // A step whose cell crossings reach a tenth of the crossing cap: the atoms move far faster than

@@ -318,14 +318,17 @@ void HardsphereGatherWindow::advance(double T1)
 // Why a particle can collide without end, from what the collision laws allow: laws that create
 // energy can run away; inelastic ones collapse (the TC model prevents it); when every law
 // conserves energy neither applies, and what is left is a particle caged among neighbours it
-// overlaps (overlap allow) or one far lighter than its neighbours
+// overlaps (overlap allow) or one far lighter than its neighbours. A bed on a floor under
+// gravity cools without end even with the TC model, so there the advice is a thermal floor.
 std::string HardsphereGatherWindow::endless_collisions() const
 {
-  bool creating = false, elastic = true;
+  bool creating = false, elastic = true, floor = false;
   std::vector<granfric::LawParams> laws = state.law_table();
   for (auto *w : state.walls) {
     const granfric::EDWall e = w->wall();
     laws.insert(laws.end(), e.laws.begin() + 1, e.laws.end());
+    const double g = state.settings.gravity[e.dim];
+    floor = floor || (e.T < 0.0 && (e.side < 0 ? -g : g) > 0.0);
   }
   for (const auto &law : laws) {
     creating = creating || law.can_create_energy();
@@ -343,8 +346,13 @@ std::string HardsphereGatherWindow::endless_collisions() const
                                       : "") +
         "a particle far lighter than its neighbours collides far more often than they do; check "
         "the initial configuration and the masses, or raise maxevents";
-  return tc > 0.0 ? host::format("inelastic collapse despite the TC model (tc {}): raise tc or maxevents", tc)
-                  : std::string("inelastic collapse. Use the TC model (keyword tc) or raise maxevents");
+  const std::string bed = floor ? "; a bed on a floor that is not thermal cools under gravity without "
+                                  "end, colliding ever more often, which the TC model slows but does "
+                                  "not stop: make the floor thermal at a small temperature (see the fix "
+                                  "hardsphere/wall page, 'Grains at rest on a floor')"
+                                : "";
+  return tc > 0.0 ? host::format("inelastic collapse despite the TC model (tc {}): raise tc or maxevents{}", tc, bed)
+                  : "inelastic collapse. Use the TC model (keyword tc) or raise maxevents" + bed;
 }
 
 // State at the end of the window in LAMMPS's frame: the core's unwrapped position less the

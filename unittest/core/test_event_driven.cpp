@@ -1465,6 +1465,18 @@ TEST(Prediction, CrossingTime)
   // a hair beyond B still moving that way: cross now
   EXPECT_EQ(crossing_time(1.0 + 1e-16, 1.0, 0.0, 1.0, +1), 0.0);
   EXPECT_EQ(crossing_time(1.0 + 1e-16, 1.0, -1.0, 1.0, +1), 0.0);
+  // at rest on B (or a hair beyond) and accelerated through it: cross now (a grain that a floor
+  // of restitution 0 left at rest under gravity; before, the root was 0/0 or not real, and the
+  // grain fell through the floor)
+  EXPECT_EQ(crossing_time(1.0, 0.0, -1.0, 1.0, -1), 0.0);
+  EXPECT_EQ(crossing_time(1.0 - 1e-16, 0.0, -1.0, 1.0, -1), 0.0);
+  EXPECT_EQ(crossing_time(1.0 - 1e-16, -1e-12, -1.0, 1.0, -1), 0.0);
+  EXPECT_EQ(crossing_time(1.0, 0.0, 1.0, 1.0, +1), 0.0);
+  // ... but not when accelerated back, or at rest with no acceleration
+  EXPECT_EQ(crossing_time(1.0, 0.0, 1.0, 1.0, -1), NEVER);
+  EXPECT_EQ(crossing_time(1.0, 0.0, 0.0, 1.0, -1), NEVER);
+  // a hair beyond B, moving back too slowly to reach it: crosses as it turns
+  EXPECT_DOUBLE_EQ(crossing_time(1.0 - 1e-16, 1e-12, -1.0, 1.0, -1), 1e-12);
 }
 
 }    // namespace

@@ -1085,6 +1085,47 @@ TEST(FixHardsphereWall, BouncingBallCollapseAndTC)
   EXPECT_LT(l2->atom->x[0][1], 0.5 + 0.05 * 0.05 / 8 + 1e-9);
 }
 
+// a bed settling on a thermal floor at a small temperature (with the TC model) stays agitated at
+// about that temperature: its collisions per step level off instead of growing as it cools, and
+// no grain gets below the floor
+TEST(FixHardsphereWall, BedSettlesOnAThermalFloor)
+{
+  auto lmp = make_lammps();
+  run(lmp.get(), "units lj\ndimension 2\natom_style sphere\nboundary p f p\ncomm_modify vel yes\n"
+                 "region box block 0 14 0 40 -0.5 0.5\ncreate_box 1 box\nlattice sq 0.25\n"
+                 "region start block 0.5 13.5 0.5 39 -0.5 0.5 units box\n"
+                 "create_atoms 1 region start\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
+                 "velocity all create 1.0 5 loop geom mom yes dist gaussian\n"
+                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.5 -1.0\n"
+                 "fix ed all hardsphere/ed gravity 0.0 -0.2 0.0 tc 0.01\n"
+                 "fix floor all hardsphere/wall ylo 0.0 thermal 0.001 7\n"
+                 "fix lid all hardsphere/wall yhi EDGE\ntimestep 0.05\nthermo 0\n"
+                 "run 600 post no");    // (settled: the bed's top below 8 diameters)
+  auto *ed = lmp->modify->get_fix_by_id("ed");
+  const double n0 = ed->compute_vector(1);
+  run(lmp.get(), "run 600 post no");
+  const double n1 = ed->compute_vector(1);
+  run(lmp.get(), "run 600 post no");
+  const double n2 = ed->compute_vector(1);
+  ASSERT_EQ(lmp->atom->natoms, 114);
+  double ke = 0.0, top = 0.0;
+  for (int i = 0; i < lmp->atom->nlocal; i++) {
+    const double *v = lmp->atom->v[i];
+    EXPECT_GE(lmp->atom->x[i][1], 0.5 - 1e-9) << "atom " << lmp->atom->tag[i];
+    top = std::max(top, lmp->atom->x[i][1]);
+    ke += 0.5 * (v[0] * v[0] + v[1] * v[1]);
+  }
+  EXPECT_LT(top, 8.0) << "a settled bed of about 8 layers";
+  // about k T per disc in translation (measured 0.6 - 0.8 of it), far below the 1 it began with
+  EXPECT_GT(ke / 114, 1e-4);
+  EXPECT_LT(ke / 114, 3e-3);
+  // measured 2300 - 3800 collisions per step for 12000 steps; an inelastic floor grew 14x from
+  // step 1000 to 2000
+  EXPECT_GT(n1 - n0, 600 * 1000.0);
+  EXPECT_LT((n2 - n1) / (n1 - n0), 1.5);
+  EXPECT_GT((n2 - n1) / (n1 - n0), 0.67);
+}
+
 // a vibrating base (piecewise parabolic) under an elastic bed: it injects energy, and no
 // particle ever gets below it
 TEST(FixHardsphereWall, VibratingBaseInjectsEnergy)

@@ -76,7 +76,10 @@ inline double pair_contact_time(const Vec3 &r, const Vec3 &v, double sigma)
 // First tau >= 0 at which x + v tau + g tau^2 / 2 reaches B moving upward (dir = +1: velocity
 // > 0 there) or downward (dir = -1); NEVER if it does not. Roots are taken in stable forms and
 // selected by the sign of the velocity at the root, so a point that sits on B up to round-off
-// is not reported as crossing B again in the direction it just came from.
+// is not reported as crossing B again in the direction it just came from. A point on B or a
+// hair beyond it that moves on that way, or is at rest there and accelerated that way (a grain
+// left at rest on a floor under gravity), crosses now, and one that moves back from beyond B
+// too slowly to reach it crosses when it turns: such roots are 0/0 or not real.
 inline double crossing_time(double x, double v, double g, double B, int dir)
 {
   const double a = 0.5 * g, c = x - B;
@@ -86,7 +89,8 @@ inline double crossing_time(double x, double v, double g, double B, int dir)
     return tau > 0.0 ? tau : 0.0;
   }
   const double disc = v * v - 4.0 * a * c;
-  if (disc < 0.0) return NEVER;
+  // (not real: B lies beyond the turning point, or the point beyond B is accelerated on)
+  if (disc < 0.0) return c * dir >= 0.0 ? std::max(0.0, -v / g) : NEVER;
   const double s = std::sqrt(disc);
   double tau;
   if (dir > 0) {
@@ -103,9 +107,10 @@ inline double crossing_time(double x, double v, double g, double B, int dir)
       tau = -(v + s) / (2.0 * a);
   }
   if (!(tau >= 0.0)) {
-    // the crossing in this direction lies in the past; if round-off left the point beyond B
-    // while it still moves that way, it crosses now
-    return (c * dir > 0.0 && v * dir > 0.0) ? 0.0 : NEVER;
+    // the crossing in this direction lies in the past (or is 0/0); if round-off left the point
+    // beyond B while it still moves that way, it crosses now
+    const bool onward = v * dir > 0.0 || (v == 0.0 && g * dir > 0.0);
+    return (c * dir >= 0.0 && onward) ? 0.0 : NEVER;
   }
   return tau;
 }
