@@ -105,7 +105,11 @@ FixHardsphereED::FixHardsphereED(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, n
   global_freq = 1;
   extvector = 0;
   restart_global = 1;
-  restart_peratom = 1;
+  // per-atom restart data (the last collision times) only with the TC model: LAMMPS announces
+  // per-atom data in the file's header for every fix with this flag, but the atoms' records
+  // hold them only for fixes with the restart callback (added below), and a file that announced
+  // them without holding them would give the next fix with that ID uninitialized values
+  restart_peratom = set.tc > 0.0 ? 1 : 0;
 
   // per-atom arrays (LAMMPS takes callbacks only from a fix's constructor): the last collision
   // times, kept only for the TC model, the stored states on several ranks (for domain windows,
@@ -287,6 +291,7 @@ void FixHardsphereED::setup(int vflag)
   check_plane();
   check_atoms_between_walls();
   check_scales();
+  warn_settling_bed();
   warned_fast = false;
   run->new_run();
 }
