@@ -158,6 +158,35 @@ int FixHardsphereED::plastic_type(const granfric::EDWall &w) const
   return 0;
 }
 
+// A bed under gravity on a static floor that is not thermal, with inelastic collisions and
+// nothing that feeds energy in (no kick, no thermal or moving wall, no shear): it settles and
+// cools without end, colliding ever more often, which the TC model slows but does not stop.
+// Warned at the start of each run, not refused: a settling bed may be what the run is for.
+void FixHardsphereED::warn_settling_bed() const
+{
+  const double *gravity = run->settings.gravity;
+  if (comm->me != 0 || !run->kicks.empty() || domain->triclinic) return;
+  const HardsphereWallPart *floor = nullptr;
+  std::vector<granfric::LawParams> laws = run->law_table();
+  for (auto *w : run->walls) {
+    const granfric::EDWall e = w->wall();
+    if (e.T >= 0.0 || e.moving()) return;    // (energy fed in)
+    if (!floor && (e.side < 0 ? -gravity[e.dim] : gravity[e.dim]) > 0.0) floor = w;
+    laws.insert(laws.end(), e.laws.begin() + 1, e.laws.end());
+  }
+  if (!floor) return;
+  if (std::all_of(laws.begin(), laws.end(), [](const granfric::LawParams &l) { return l.conserves_energy(); }))
+    return;
+  error->warning(FLERR, "Fix hardsphere/ed {}: nothing feeds energy into the grains over fix "
+                 "hardsphere/wall {} (static, not thermal, under gravity toward it) and the "
+                 "collisions are inelastic: the bed will settle and cool without end, colliding "
+                 "ever more often ({}); for a bed that comes to rest make that floor thermal at "
+                 "a small temperature (see the fix hardsphere/wall page, 'Grains at rest on a floor')",
+                 id, floor->wall_id(),
+                 run->settings.tc > 0.0 ? "the TC model slows that but does not stop it"
+                                        : "without the TC model the first grain to settle collapses against it");
+}
+
 // A step whose cell crossings reach a tenth of the crossing cap: the atoms move far faster than
 // the system's scale. Energy may be running away (the cap will then stop the run), or steps are
 // meant that long: warned once per run, as soon as it happens (the crossings summed over the

@@ -142,6 +142,34 @@ TEST(InputChecks, FastAtomsWarned)
   EXPECT_EQ(screen_of(gas("1")).find("WARNING"), std::string::npos);
 }
 
+// a bed over a static, non-thermal floor under gravity with inelastic collisions and nothing
+// feeding energy in settles without end: warned at the start of the run; not with a thermal
+// floor, a vibrating one, kicks, or elastic collisions
+TEST(InputChecks, SettlingBedWarned)
+{
+  const std::string warning = "WARNING: Fix hardsphere/ed ed: nothing feeds energy into the grains over fix "
+                              "hardsphere/wall floor (static, not thermal, under gravity toward it)";
+  auto bed = [](const std::string &r, const std::string &floor, const std::string &more) {
+    return "units lj\ndimension 2\natom_style sphere\nboundary p f p\ncomm_modify vel yes\n"
+           "region box block 0 10 -0.5 10 -0.5 0.5 units box\ncreate_box 1 box\nlattice sq 0.25\n"
+           "region inner block EDGE EDGE 0.7 9.3 EDGE EDGE units box\ncreate_atoms 1 region inner\n"
+           "set type 1 diameter 1.0\nset type 1 mass 1.0\npair_style hardsphere/rough inertia disc\n"
+           "pair_coeff * * " + r + " -1.0\ntimestep 0.1\nthermo 0\n"
+           "fix ed all hardsphere/ed gravity 0 -1 0 tc 0.01\nfix floor all hardsphere/wall ylo 0.0" +
+           floor + "\nfix lid all hardsphere/wall yhi EDGE\n" + more + "run 1 post no";
+  };
+  const std::string out = screen_of(bed("0.9", "", ""));
+  EXPECT_NE(out.find(warning), std::string::npos) << out;
+  EXPECT_NE(out.find("Loop time"), std::string::npos) << out;
+  EXPECT_NE(out.find("the TC model slows that but does not stop it"), std::string::npos) << out;
+  for (const auto &quiet : {bed("0.9", " thermal 0.01 5", ""), bed("0.9", " vibrate sine 0.1 5.0", ""),
+                            bed("0.9", "", "fix k all hardsphere/kick 0.1 1.0 5\n"), bed("1.0", "", "")}) {
+    const std::string o = screen_of(quiet);
+    EXPECT_EQ(o.find("WARNING"), std::string::npos) << o;
+    EXPECT_NE(o.find("Loop time"), std::string::npos) << o;
+  }
+}
+
 TEST(InputChecks, OverlapKeywordValues)
 {
   auto lmp = make_lammps();
