@@ -291,6 +291,7 @@ void FixHardsphereED::setup(int vflag)
   check_plane();
   check_atoms_between_walls();
   check_scales();
+  check_atoms_at_rest_on_walls();
   warn_settling_bed();
   warned_fast = false;
   run->new_run();

@@ -138,6 +138,7 @@ class FixHardsphereED : public Fix {
   void check_resting_walls(double mmax, double amax) const;
   int plastic_type(const granfric::EDWall &w) const;
   void warn_settling_bed() const;
+  void check_atoms_at_rest_on_walls() const;
   void warn_ignored_inputs() const;
   void warn_fast_atoms();                  // (after each window)
   bool warned_fast = false;                // (once per run)

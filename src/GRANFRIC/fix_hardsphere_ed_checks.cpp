@@ -351,6 +351,41 @@ void FixHardsphereED::check_box_fits_atoms() const
 
 // no atom reaches behind a wall at the start of the run (its center at least its radius from
 // the plane, on the inner side, up to rounding); the error names the atom with the lowest ID
+// An atom that starts at rest on a static wall that is not thermal, under gravity toward it,
+// or so nearly at rest that its hop off the wall, even an elastic one, would rise less than a
+// millionth of its diameter or last less than a step / maxevents: it would collide with the
+// wall without end from the first instant (the TC model makes such collisions elastic, not
+// rarer; a thermal or moving wall throws it off)
+void FixHardsphereED::check_atoms_at_rest_on_walls() const
+{
+  const double *gravity = run->settings.gravity;
+  const double dt = update->dt, maxevents = (double) run->settings.maxevents;
+  for (auto *w : run->walls) {
+    const granfric::EDWall e = w->geometry();
+    const double g = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
+    if (e.T >= 0.0 || e.moving() || !(g > 0.0)) continue;
+    // (its speed when it reaches the wall, from its gap and its speed away from the wall)
+    auto hit_speed = [&](int i) {
+      const double gap = std::max(0.0, -e.side * (atom->x[i][e.dim] - e.pos) - atom->radius[i]);
+      const double away = -e.side * atom->v[i][e.dim];
+      return std::sqrt(away * away + 2.0 * g * gap);
+    };
+    const tagint who = first_atom([&](int i) {
+      const double v = hit_speed(i);
+      return 2.0 * v / g * maxevents <= dt || v * v / (2.0 * g) <= 1e-6 * 2.0 * atom->radius[i];
+    });
+    if (who == NOATOM) continue;
+    const double v = atom_value(who, hit_speed), diameter = atom_value(who, [&](int i) { return 2.0 * atom->radius[i]; });
+    error->all(FLERR, "Fix hardsphere/ed: atom {} starts at rest on fix hardsphere/wall {} (or "
+               "nearly: it reaches the wall at speed {:.3g}) under gravity {} toward it: it would "
+               "hop off the wall {:.3g} diameters high, for {:.3g}, and collide with it without end "
+               "(the TC model makes such collisions elastic, not rarer). Lift it off the wall, "
+               "give it a speed away from it, or make the wall thermal (see the fix "
+               "hardsphere/wall page, 'Grains at rest on a floor')", who, w->wall_id(), v, g,
+               v * v / (2.0 * g) / diameter, 2.0 * v / g);
+  }
+}
+
 void FixHardsphereED::check_atoms_between_walls() const
 {
   const double t = window_start_time() + update->dt;    // (the time the next window starts)
