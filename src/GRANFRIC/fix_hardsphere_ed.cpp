@@ -293,7 +293,7 @@ void FixHardsphereED::setup(int vflag)
   check_scales();
   check_atoms_at_rest_on_walls();
   warn_settling_bed();
-  warned_fast = false;
+  warned_fast = warned_piling = false;
   run->new_run();
 }
 
@@ -366,6 +366,7 @@ void FixHardsphereED::initial_integrate(int vflag)
   }
   run->finish_window(dt);
   warn_fast_atoms();
+  warn_piling_collisions();
 }
 
 double FixHardsphereED::compute_vector(int n)

@@ -142,6 +142,8 @@ class FixHardsphereED : public Fix {
   void warn_ignored_inputs() const;
   void warn_fast_atoms();                  // (after each window)
   bool warned_fast = false;                // (once per run)
+  void warn_piling_collisions();           // (after each window)
+  bool warned_piling = false;              // (once per run)
   bigint plane_checked = -1;               // the number of atoms the last check_plane saw
   static constexpr tagint NOATOM = MAXTAGINT;
   tagint first_atom(const std::function<bool(int)> &bad) const;

@@ -205,6 +205,25 @@ void FixHardsphereED::warn_fast_atoms()
                    "and the run stops when a step exceeds the cap", id, update->ntimestep, per_atom, maxcross);
 }
 
+// A step in which one atom collided a hundredth of the collision cap maxevents or more (and at
+// least 1000 times): collisions are piling up, as in an inelastic collapse or in grains coming
+// to rest, and if they go on growing the cap stops the run, possibly only after minutes; or steps
+// are meant that long. Warned once per run, as soon as it happens
+void FixHardsphereED::warn_piling_collisions()
+{
+  if (warned_piling) return;
+  const long maxevents = run->settings.maxevents, most = run->last.max_collisions_one_particle;
+  if (most < std::max(1000L, maxevents / 100)) return;
+  warned_piling = true;
+  if (comm->me == 0)
+    error->warning(FLERR, "Fix hardsphere/ed {}: in step {} one atom collided {} times, a hundredth "
+                   "or more of the collision cap maxevents = {}: collisions are piling up (an "
+                   "inelastic collapse, or grains coming to rest on a floor or on each other: see "
+                   "'Grains at rest on a floor' on the fix hardsphere/wall page), or steps are meant "
+                   "that long; the run stops when an atom exceeds the cap", id, update->ntimestep,
+                   most, maxevents);
+}
+
 // rerun computes from snapshots, between which hard particles collide: the collisions (their
 // counts, the energy they dissipate, the collisional part of the pressure) cannot be had from
 // them, and the run would report none without a word
@@ -352,10 +371,10 @@ void FixHardsphereED::check_box_fits_atoms() const
 // no atom reaches behind a wall at the start of the run (its center at least its radius from
 // the plane, on the inner side, up to rounding); the error names the atom with the lowest ID
 // An atom that starts at rest on a static wall that is not thermal, under gravity toward it,
-// or so nearly at rest that its hop off the wall, even an elastic one, would rise less than a
-// millionth of its diameter or last less than a step / maxevents: it would collide with the
-// wall without end from the first instant (the TC model makes such collisions elastic, not
-// rarer; a thermal or moving wall throws it off)
+// or so nearly at rest that its hop off the wall, even an elastic one, would last less than a
+// step / maxevents: it would collide with the wall without end from the first instant (the TC
+// model makes such collisions elastic, not rarer; a thermal or moving wall throws it off). Hops
+// of a settled bed, however low, are not refused: with the TC model they last about t_c.
 void FixHardsphereED::check_atoms_at_rest_on_walls() const
 {
   const double *gravity = run->settings.gravity;
@@ -370,10 +389,7 @@ void FixHardsphereED::check_atoms_at_rest_on_walls() const
       const double away = -e.side * atom->v[i][e.dim];
       return std::sqrt(away * away + 2.0 * g * gap);
     };
-    const tagint who = first_atom([&](int i) {
-      const double v = hit_speed(i);
-      return 2.0 * v / g * maxevents <= dt || v * v / (2.0 * g) <= 1e-6 * 2.0 * atom->radius[i];
-    });
+    const tagint who = first_atom([&](int i) { return 2.0 * hit_speed(i) / g * maxevents <= dt; });
     if (who == NOATOM) continue;
     const double v = atom_value(who, hit_speed), diameter = atom_value(who, [&](int i) { return 2.0 * atom->radius[i]; });
     error->all(FLERR, "Fix hardsphere/ed: atom {} starts at rest on fix hardsphere/wall {} (or "

@@ -6,7 +6,8 @@ import numpy as np
 
 def read_thermo_blocks(path):
     """Every thermo table of a LAMMPS log file, one per run section in order: a list of
-    (column names, numpy array of rows)."""
+    (column names, numpy array of rows). A warning printed within a table (a fix warns once
+    during a run) is passed over."""
     blocks = []
     cols = None
     rows = []
@@ -17,6 +18,8 @@ def read_thermo_blocks(path):
                 cols, rows = words, []
                 continue
             if cols is not None:
+                if words and words[0] == "WARNING:":
+                    continue
                 if len(words) == len(cols):
                     try:
                         rows.append([float(w) for w in words])

@@ -82,3 +82,17 @@ def test_a_changed_printed_digit_fails_the_serial_check(tmp_path):
     new.write_text("\n".join(lines))
     assert examples.differences_as_printed(ref, str(new))
     assert not examples.differences_as_printed(ref, ref)
+
+
+def test_warning_within_a_thermo_table_is_passed_over(tmp_path):
+    """A fix that warns once during a run prints the warning between two thermo rows: the table
+    goes on after it (else the rows after it would be lost and the logs compared short)."""
+    log = tmp_path / "log.warned"
+    log.write_text("   Step          Temp     \n         0   1.0   \n        10   0.9   \n"
+                   "WARNING: Fix hardsphere/ed ed: in step 12 one atom collided 20000 times (x.cpp:1)\n"
+                   "        20   0.8   \n        30   0.7   \nLoop time of 1.0 on 1 procs\n")
+    blocks = lammpslog.read_thermo_blocks(str(log))
+    assert len(blocks) == 1
+    cols, data = blocks[0]
+    assert cols == ["Step", "Temp"]
+    assert data[:, 0].tolist() == [0, 10, 20, 30]

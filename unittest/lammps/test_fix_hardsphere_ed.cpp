@@ -1099,7 +1099,7 @@ TEST(FixHardsphereWall, BedSettlesOnAThermalFloor)
                  "region start block 0.5 13.5 0.5 39 -0.5 0.5 units box\n"
                  "create_atoms 1 region start\nset type 1 diameter 1.0\nset type 1 mass 1.0\n"
                  "velocity all create 1.0 5 loop geom mom yes dist gaussian\n"
-                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.5 -1.0\n"
+                 "pair_style hardsphere/rough inertia disc\npair_coeff * * 0.5 0.0\n"
                  "fix ed all hardsphere/ed gravity 0.0 -0.2 0.0 tc 0.01\n"
                  "fix floor all hardsphere/wall ylo 0.0 thermal 0.001 7\n"
                  "fix lid all hardsphere/wall yhi EDGE\ntimestep 0.05\nthermo 0\n"

@@ -170,6 +170,28 @@ TEST(InputChecks, SettlingBedWarned)
   }
 }
 
+// a ball that comes to rest on an inelastic floor with the TC model ends up bouncing elastically
+// with a period of about t_c (0.04 here): 2500 collisions in a step of 100, past the warning's
+// 1000 (a hundredth of maxevents = 1e5, but at least 1000); warned once. Not in steps of 1.
+// (The start of the run warns of the settling itself: a static inelastic floor, no driving.)
+TEST(InputChecks, PilingCollisionsWarned)
+{
+  const std::string warning = "WARNING: Fix hardsphere/ed ed: in step ";
+  auto bounce = [](const std::string &dt) {
+    return ball("3") + "fix ed all hardsphere/ed gravity 0 -1 0 tc 0.05 maxevents 100000\n"
+                       "fix floor all hardsphere/wall ylo EDGE\ntimestep " + dt + "\nrun 3 post no";
+  };
+  const std::string out = screen_of(bounce("100"));
+  const size_t at = out.find(warning);
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_NE(out.find("a hundredth or more of the collision cap maxevents = 100000: collisions are piling up", at),
+            std::string::npos) << out;
+  EXPECT_EQ(out.find(warning, at + 1), std::string::npos) << "once in a run: " << out;
+  const std::string quiet = screen_of(bounce("1"));
+  EXPECT_EQ(quiet.find(warning), std::string::npos) << quiet;
+  EXPECT_NE(quiet.find("Loop time"), std::string::npos) << quiet;
+}
+
 TEST(InputChecks, OverlapKeywordValues)
 {
   auto lmp = make_lammps();
