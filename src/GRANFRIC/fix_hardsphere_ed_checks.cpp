@@ -119,7 +119,7 @@ void FixHardsphereED::check_resting_walls(double mmax, double amax) const
   const double dt = update->dt;
   for (auto *w : run->walls) {
     const granfric::EDWall e = w->geometry();
-    const double toward = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
+    const double toward = e.toward(gravity);
     if (!(toward > 0.0)) continue;
     std::string why;
     if (e.T < 0.0) {
@@ -171,7 +171,7 @@ void FixHardsphereED::warn_settling_bed() const
   for (auto *w : run->walls) {
     const granfric::EDWall e = w->wall();
     if (e.T >= 0.0 || e.moving()) return;    // (energy fed in)
-    if (!floor && (e.side < 0 ? -gravity[e.dim] : gravity[e.dim]) > 0.0) floor = w;
+    if (!floor && e.toward(gravity) > 0.0) floor = w;
     laws.insert(laws.end(), e.laws.begin() + 1, e.laws.end());
   }
   if (!floor) return;
@@ -368,8 +368,6 @@ void FixHardsphereED::check_box_fits_atoms() const
   }
 }
 
-// no atom reaches behind a wall at the start of the run (its center at least its radius from
-// the plane, on the inner side, up to rounding); the error names the atom with the lowest ID
 // An atom that starts at rest on a static wall that is not thermal, under gravity toward it,
 // or so nearly at rest that its hop off the wall, even an elastic one, would last less than a
 // step / maxevents: it would collide with the wall without end from the first instant (the TC
@@ -381,7 +379,7 @@ void FixHardsphereED::check_atoms_at_rest_on_walls() const
   const double dt = update->dt, maxevents = (double) run->settings.maxevents;
   for (auto *w : run->walls) {
     const granfric::EDWall e = w->geometry();
-    const double g = e.side < 0 ? -gravity[e.dim] : gravity[e.dim];
+    const double g = e.toward(gravity);
     if (e.T >= 0.0 || e.moving() || !(g > 0.0)) continue;
     // (its speed when it reaches the wall, from its gap and its speed away from the wall)
     auto hit_speed = [&](int i) {
@@ -402,6 +400,8 @@ void FixHardsphereED::check_atoms_at_rest_on_walls() const
   }
 }
 
+// no atom reaches behind a wall at the start of the run (its center at least its radius from
+// the plane, on the inner side, up to rounding); the error names the atom with the lowest ID
 void FixHardsphereED::check_atoms_between_walls() const
 {
   const double t = window_start_time() + update->dt;    // (the time the next window starts)

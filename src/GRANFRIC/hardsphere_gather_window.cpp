@@ -327,8 +327,7 @@ std::string HardsphereGatherWindow::endless_collisions() const
   for (auto *w : state.walls) {
     const granfric::EDWall e = w->wall();
     laws.insert(laws.end(), e.laws.begin() + 1, e.laws.end());
-    const double g = state.settings.gravity[e.dim];
-    floor = floor || (e.T < 0.0 && (e.side < 0 ? -g : g) > 0.0);
+    floor = floor || (e.T < 0.0 && e.toward(state.settings.gravity) > 0.0);
   }
   for (const auto &law : laws) {
     creating = creating || law.can_create_energy();

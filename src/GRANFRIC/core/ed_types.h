@@ -84,6 +84,8 @@ struct EDWall {
   double shake_A = 0.0, shake_omega = 0.0;
   bool shaking() const { return shake_dim >= 0 && shake_A > 0.0 && shake_omega > 0.0; }
   bool moving() const { return vibrating() || sliding() || shaking(); }
+  // the component of an acceleration g (gravity) that points into the wall (> 0: toward it)
+  double toward(const double g[3]) const { return side < 0 ? -g[dim] : g[dim]; }
   // the velocity of the wall's surface within its plane at absolute time s
   Vec3 surface_velocity(double s) const
   {
