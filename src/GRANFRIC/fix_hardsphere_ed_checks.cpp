@@ -108,9 +108,10 @@ void FixHardsphereED::check_scales() const
 }
 
 // A wall under gravity toward it that holds the grains landing on it at rest: a thermal wall
-// at T = 0, or nearly (the grains it re-emits hop less than a millionth of a diameter high, or
-// maxevents times and more per step), or a wall whose law stops the normal motion (restitution
-// 0, which the TC model cannot undo: reversing a zero speed leaves it zero). Refused: a grain at
+// so cold that the grains it re-emits hop less than a millionth of a diameter high, or
+// maxevents times and more per step (T = 0 is refused by the wall itself), or a wall whose law
+// stops the normal motion (restitution 0, which the TC model cannot undo: reversing a zero
+// speed leaves it zero). Refused: a grain at
 // rest on a wall collides with it without end (mmax, amax: the heaviest mass, the largest radius)
 void FixHardsphereED::check_resting_walls(double mmax, double amax) const
 {
@@ -131,9 +132,7 @@ void FixHardsphereED::check_resting_walls(double mmax, double amax) const
       // a grain re-emitted at T hops for about 2 sqrt(T/m)/g, kT/(m g) high
       const double hop = 2.0 * std::sqrt(e.T / mmax) / toward, height = e.T / (mmax * toward);
       if (hop * maxevents > dt && height > 1e-6 * 2.0 * amax) continue;
-      why = e.T == 0.0
-          ? std::string("(thermal at T = 0) the grains it re-emits stay at rest on it")
-          : host::format("(thermal at T = {}) a grain of mass {} it re-emits hops {:.3g} diameters "
+      why = host::format("(thermal at T = {}) a grain of mass {} it re-emits hops {:.3g} diameters "
                          "high, for {:.3g} (about {:.3g} times per step of {}): it stays practically "
                          "at rest on the wall", e.T * force->mvv2e / force->boltz, mmax,
                          height / (2.0 * amax), hop, dt / hop, dt);

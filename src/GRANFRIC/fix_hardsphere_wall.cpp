@@ -88,8 +88,13 @@ FixHardsphereWall::FixHardsphereWall(LAMMPS *lmp, int narg, char **arg) :
       if (iarg + 3 > narg) utils::missing_cmd_args(FLERR, "fix hardsphere/wall thermal T seed", error);
       temperature = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       seed = utils::bnumeric(FLERR, arg[iarg + 2], false, lmp);
-      if (!(temperature >= 0.0))
-        error->all(FLERR, "Fix hardsphere/wall thermal T = {} must be >= 0", temperature);
+      // (at T = 0 the wall stops every grain that hits it dead: grains pile up at rest on it,
+      // and one pushed into it by another is stopped again, without end)
+      if (!(temperature > 0.0))
+        error->all(FLERR, "Fix hardsphere/wall thermal T = {} must be > 0: a wall at T = 0 "
+                   "would stop every grain that hits it dead, so that grains pile up at rest on "
+                   "it and one pushed into it by another is stopped again, colliding without end "
+                   "(a small T absorbs nearly all the energy of the grains that hit it)", temperature);
       if (seed <= 0) error->all(FLERR, "Fix hardsphere/wall thermal seed = {} must be > 0", seed);
       iarg += 3;
     } else if (strcmp(arg[iarg], "slide") == 0) {

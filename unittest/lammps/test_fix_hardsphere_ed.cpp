@@ -1185,7 +1185,7 @@ TEST_F(FixErrors, Wall)
   EXPECT_LMP_ERROR(l.get(), "fix w1 all hardsphere/wall ylo abc", "Expected floating point");
   EXPECT_LMP_ERROR(l.get(), "fix w2 all hardsphere/wall ylo EDGE spin 3",
                    "Unknown fix hardsphere/wall keyword: spin \\(allowed: coeffs, thermal, vibrate, slide, shake\\)");
-  EXPECT_LMP_ERROR(l.get(), "fix w8 all hardsphere/wall ylo EDGE thermal -1 5", "thermal T = -1 must be >= 0");
+  EXPECT_LMP_ERROR(l.get(), "fix w8 all hardsphere/wall ylo EDGE thermal -1 5", "thermal T = -1 must be > 0");
   EXPECT_LMP_ERROR(l.get(), "fix w11 all hardsphere/wall ylo EDGE vibrate square 0.1 10",
                    "vibrate square is not available \\(allowed: sine, parabolic\\)");
   EXPECT_LMP_ERROR(l.get(), "fix w12 all hardsphere/wall ylo EDGE vibrate parabolic 0 10",
