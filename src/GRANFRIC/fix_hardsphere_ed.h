@@ -137,7 +137,8 @@ class FixHardsphereED : public Fix {
   void check_scales() const;
   void check_resting_walls(double mmax, double amax) const;
   int plastic_type(const granfric::EDWall &w) const;
-  void warn_settling_bed() const;
+  void warn_settling_bed();
+  bool warned_settling = false;            // (once per fix)
   void check_atoms_at_rest_on_walls() const;
   void warn_ignored_inputs() const;
   void warn_fast_atoms();                  // (after each window)

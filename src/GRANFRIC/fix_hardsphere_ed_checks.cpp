@@ -160,11 +160,12 @@ int FixHardsphereED::plastic_type(const granfric::EDWall &w) const
 // A bed under gravity on a static floor that is not thermal, with inelastic collisions and
 // nothing that feeds energy in (no kick, no thermal or moving wall, no shear): it settles and
 // cools without end, colliding ever more often, which the TC model slows but does not stop.
-// Warned at the start of each run, not refused: a settling bed may be what the run is for.
-void FixHardsphereED::warn_settling_bed() const
+// Warned at the start of the first run that has it (not of every run of a script that runs in
+// many pieces), not refused: a settling bed may be what the run is for.
+void FixHardsphereED::warn_settling_bed()
 {
   const double *gravity = run->settings.gravity;
-  if (comm->me != 0 || !run->kicks.empty() || domain->triclinic) return;
+  if (warned_settling || comm->me != 0 || !run->kicks.empty() || domain->triclinic) return;
   const HardsphereWallPart *floor = nullptr;
   std::vector<granfric::LawParams> laws = run->law_table();
   for (auto *w : run->walls) {
@@ -176,6 +177,7 @@ void FixHardsphereED::warn_settling_bed() const
   if (!floor) return;
   if (std::all_of(laws.begin(), laws.end(), [](const granfric::LawParams &l) { return l.conserves_energy(); }))
     return;
+  warned_settling = true;
   error->warning(FLERR, "Fix hardsphere/ed {}: nothing feeds energy into the grains over fix "
                  "hardsphere/wall {} (static, not thermal, under gravity toward it) and the "
                  "collisions are inelastic: the bed will settle and cool without end, colliding "
