@@ -67,6 +67,7 @@ TEST(Options, EveryDefiningFieldChangesTheConfiguration)
       [](EDOptions &o) { o.cell_width = 1.5; },
       [](EDOptions &o) { o.neighbours = EDOptions::CELLS; },
       [](EDOptions &o) { o.list_skin = 0.2; },
+      [](EDOptions &o) { o.shear_band = 4; },
   };
   std::vector<std::string> seen = {a.describe()};
   for (size_t k = 0; k < defining.size(); k++) {
@@ -105,6 +106,6 @@ TEST(Options, DescriptionNamesEveryField)
                            "period ", "gravity (0 0 0)", "tc 0", "max_collisions 1000000", "max_crossings 10000",
                            "gamma_bins ", "walls [{dim 1, side -1, pos 0, laws [{kind 0, r 0.90000000000000002",
                            "shape []", "cell_width ", "neighbours 0", "list_skin ", "simd true",
-                           "prefetch_bytes ", "tick_last 4294967294"})
+                           "prefetch_bytes ", "tick_last 4294967294", "shear_band 0"})
     EXPECT_NE(d.find(name), std::string::npos) << name << " not in " << d;
 }

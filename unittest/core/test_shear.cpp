@@ -135,10 +135,82 @@ TEST(Shear, RowsPassingWholePeriodsEqualReference)
   }
 }
 
+// The rows of cells move in bands (EDOptions::shear_band rows each, the last ones one more
+// where they do not divide the rows): every choice, from a band per row to one band for the
+// box, gives the reference's trajectory and the same bits as a band per row, the cells being
+// only where candidates are looked for; in 2d and 3d, slow and fast shear of either sign
+TEST(Shear, BandsOfRowsGiveTheSameBits)
+{
+  const ShearCase cases[] = {ShearCase{0, 2, 200, 0.2, 1.0, 1.0, 3}, ShearCase{2, 2, 200, 0.1, -3.0, 0.5, 3},
+                             ShearCase{1, 3, 200, 0.2, 1.5, 1.0, 3}, ShearCase{0, 3, 200, 0.1, -4.0, 0.3, 3}};
+  for (const ShearCase &c : cases) {
+    const Reference start = sheared_system(c, 700 + c.dim + (c.rate > 0));
+    const double mft = mean_free_time(start), T = c.T_mft * mft;
+    Reference ref = start;
+    ref.run_until(T);
+    ASSERT_GE(ref.collisions, c.n);
+    std::vector<Vec3> first;
+    int bands_seen = 1 << 30, kinds = 0;
+    for (int rows : {1, 2, 3, 5, 1000}) {
+      SCOPED_TRACE("dim " + std::to_string(c.dim) + ", rate " + std::to_string(c.rate) + ", rows per band " +
+                   std::to_string(rows));
+      CoreRun run(start);
+      EDOptions o = run.ed.options();
+      o.shear_band = rows;
+      run.ed.configure(o, start.ntypes, start.laws);
+      run.run(T, c.dt_mft * mft);
+      const int nb = run.ed.shear_band_count();
+      EXPECT_LE(nb, bands_seen);
+      kinds += nb != bands_seen;
+      bands_seen = nb;
+      EXPECT_EQ(run.total.collisions, ref.collisions);
+      double dx = 0.0;
+      for (size_t i = 0; i < ref.p.size(); i++) dx = std::max(dx, norm(ref.p[i].x - run.ed.particle((int) i).x));
+      EXPECT_LT(dx, 1e-9);
+      for (int i = 0; i < run.ed.size(); i++) {
+        const Vec3 x = run.ed.particle(i).x;
+        if (rows == 1) {
+          first.push_back(x);
+          continue;
+        }
+        ASSERT_TRUE(x.x == first[i].x && x.y == first[i].y && x.z == first[i].z) << "particle " << i;
+      }
+    }
+    EXPECT_EQ(bands_seen, 1);
+    EXPECT_GE(kinds, 3);
+  }
+}
+
+// The automatic bands: as many rows as keep the flow's difference across a band within f times
+// the spread of x velocities about the streaming profile (f = 1 in 2d, 3 in 3d); one band
+// without shear
+TEST(Shear, AutomaticBandsFollowTheThermalSpeed)
+{
+  for (int dim = 2; dim <= 3; dim++)
+    for (double rate : {0.0, 0.05, 0.7, 2.3, 6.1}) {
+      ShearCase c{0, dim, dim == 2 ? 400 : 2000, 0.2, 1.0, 0.1, 0};
+      Reference ref = sheared_system(c, 900 + dim);
+      // velocities on the streaming profile, the x spread known
+      double n = 0.0, sum = 0.0, sum2 = 0.0;
+      for (const auto &a : ref.p) n += 1.0, sum += a.v.x, sum2 += a.v.x * a.v.x;
+      const double spread = std::sqrt(sum2 / n - (sum / n) * (sum / n));
+      ref.shear_rate = rate * spread;
+      for (auto &a : ref.p) a.v.x += ref.shear_rate * (a.x.y - ref.lo[1]) / ref.L.y;
+      CoreRun run(ref);
+      run.run(0.01 * mean_free_time(ref), 0.01 * mean_free_time(ref));
+      const int ny = (int) std::floor(ref.L.y / run.ed.cell_size() + 1e-9);    // (cubic cells)
+      const double f = dim == 3 ? 3.0 : 1.0;
+      const int rows = rate == 0.0 ? ny : std::min(ny, (int) std::floor(f * ny / rate));
+      SCOPED_TRACE(std::to_string(dim) + "D, rate " + std::to_string(rate) + ", rows " + std::to_string(ny));
+      EXPECT_EQ(run.ed.shear_band_count(), std::max(1, ny / std::max(1, rows)));
+    }
+}
+
 // start / advance_to / rebase with the queue kept, as fix hardsphere/ed runs, and gravity
 TEST(Shear, QueueKeptAcrossWindowsEqualsReference)
 {
   for (int dim = 2; dim <= 3; dim++) {
+    SCOPED_TRACE(std::to_string(dim) + "D");
     Reference ref = sheared_system(ShearCase{1, dim, 150, 0.25, 3.0, 0, 0}, 71 + dim);
     ref.gravity = dim == 2 ? Vec3(0.0, 0.0, 0.0) : Vec3(0.0, 0.0, -0.4);
     ref.shift0 = 0.93 * ref.L.x;    // (close to a period: the core's shift passes it)
@@ -248,6 +320,9 @@ TEST(Shear, OptionsRefused)
   o.shear_rate = INFINITY;
   EXPECT_THROW(ed.configure(o, 1, laws), std::invalid_argument);
   o.shear_rate = 1.0;
+  o.shear_band = -1;
+  EXPECT_THROW(ed.configure(o, 1, laws), std::invalid_argument);    // (rows per band)
+  o.shear_band = 0;
   EXPECT_NO_THROW(ed.configure(o, 1, laws));
   EXPECT_THROW(ed.set_shear_shift(NAN), std::invalid_argument);
 }

@@ -28,6 +28,13 @@ template <bool FULL>
 void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 {
   if (opt.shear) {    // (a sheared box: its cells move with the flow, see shear.cpp)
+    if (band_interior(schedules[i].c[1])) {
+      const bool done = opt.dim == 2 ? (has_gravity ? scan_band_at<2, true, FULL>(i, dlo, dhi)
+                                                    : scan_band_at<2, false, FULL>(i, dlo, dhi))
+                                     : (has_gravity ? scan_band_at<3, true, FULL>(i, dlo, dhi)
+                                                    : scan_band_at<3, false, FULL>(i, dlo, dhi));
+      if (done) return;
+    }
     scan_sheared(i, FULL, dlo, dhi);
     return;
   }
@@ -60,10 +67,44 @@ template <int DIM, bool GRAV, bool LATEST>
 void EDCore::scan_spans_t(int i, const RowSpan *s, int n)
 {
   Seek k = seek(i);
-  if (DIM == 3 && !GRAV && lanes && offer_spans_lanes<LATEST>(k, s, n)) {
-    settle(k);
-    return;
+  offer_spans<DIM, GRAV, LATEST>(k, s, n);
+  settle(k);
+}
+
+// A row at the edge of its band (one neighbouring row across a band boundary, no y face), its
+// block of cells lo..hi of the rows of its band inside the grid: those as an unsheared scan
+// takes them (scan_block), the row across the boundary by its spans s
+template <int DIM, bool GRAV, bool LATEST>
+void EDCore::scan_edge_t(int i, const RowSpan *s, int n, const int lo[3], const int hi[3])
+{
+  Seek k = seek(i);
+  scan_block<DIM, GRAV, false, LATEST, true>(k, lo, hi);
+  offer_spans<DIM, GRAV, LATEST>(k, s, n);
+  settle(k);
+}
+
+void EDCore::scan_edge(int i, const RowSpan *s, int n, const int lo[3], const int hi[3])
+{
+  const bool latest = at_present(i);
+  if (opt.dim == 2) {
+    if (has_gravity)
+      latest ? scan_edge_t<2, true, true>(i, s, n, lo, hi) : scan_edge_t<2, true, false>(i, s, n, lo, hi);
+    else
+      latest ? scan_edge_t<2, false, true>(i, s, n, lo, hi) : scan_edge_t<2, false, false>(i, s, n, lo, hi);
+  } else {
+    if (has_gravity)
+      latest ? scan_edge_t<3, true, true>(i, s, n, lo, hi) : scan_edge_t<3, true, false>(i, s, n, lo, hi);
+    else
+      latest ? scan_edge_t<3, false, true>(i, s, n, lo, hi) : scan_edge_t<3, false, false>(i, s, n, lo, hi);
   }
+}
+
+// the candidates in the spans s into a scan in progress (k)
+template <int DIM, bool GRAV, bool LATEST>
+inline __attribute__((always_inline)) void EDCore::offer_spans(Seek &k, const RowSpan *s, int n)
+{
+  const int i = k.i;
+  if (DIM == 3 && !GRAV && lanes && offer_spans_lanes<LATEST>(k, s, n)) return;
   const CellImage *IM = images.data();
   const int n0 = nc[0];
   // the occupied cells of every row, in order, gathered first without a branch per cell (which
@@ -86,7 +127,6 @@ void EDCore::scan_spans_t(int i, const RowSpan *s, int n)
       if (j != i)
         offer<DIM, GRAV, LATEST, true>(k, j, qs[f] - IM[j].k[0], w.ky - IM[j].k[1], DIM == 3 ? w.kz - IM[j].k[2] : 0);
   }
-  settle(k);
 }
 
 void EDCore::scan_spans(int i, const RowSpan *s, int n)
@@ -220,7 +260,7 @@ inline void EDCore::settle(const Seek &k)
 
 // offer_cells() in 3d without gravity: the candidates as list entries, offered in lanes (as
 // many at a time as a buffer holds). False (k as it was): a shift beyond an entry's range.
-template <bool LATEST>
+template <bool LATEST, bool SHEARED>
 bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of)
 {
   const int i = k.i;
@@ -234,11 +274,11 @@ bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8
         buf[nb] = j;
         nb += j != i;
         if (nb == LANE_BUFFER) {
-          offer_lanes<LATEST, true>(k, nullptr, buf, nb);
+          offer_lanes<LATEST, true, SHEARED>(k, nullptr, buf, nb);
           nb = 0;
         }
       }
-    offer_lanes<LATEST, true>(k, nullptr, buf, nb);
+    offer_lanes<LATEST, true, SHEARED>(k, nullptr, buf, nb);
     return true;
   }
   const int pk[3] = {images[i].k[0], images[i].k[1], images[i].k[2]};
@@ -255,7 +295,7 @@ bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8
       nb += j != i;
       if (nb == LANE_BUFFER) {
         if (wide & ~255) break;
-        offer_lanes<LATEST, false>(k, buf, nullptr, nb);
+        offer_lanes<LATEST, false, SHEARED>(k, buf, nullptr, nb);
         nb = 0;
       }
     }
@@ -264,7 +304,7 @@ bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8
       return false;
     }
   }
-  offer_lanes<LATEST, false>(k, buf, nullptr, nb);
+  offer_lanes<LATEST, false, SHEARED>(k, buf, nullptr, nb);
   return true;
 }
 
@@ -334,21 +374,66 @@ bool EDCore::offer_spans_lanes(Seek &k, const RowSpan *s, int n)
 
 // The candidates in gathered cells, in order: first[f] heads the list of a cell reached at the
 // image shift shift[of[f]] (shift null: every shift 0)
-template <int DIM, bool GRAV, bool LATEST>
+template <int DIM, bool GRAV, bool LATEST, bool SHEARED>
 inline __attribute__((always_inline)) void EDCore::offer_cells(Seek &k, const int *first, int nfirst,
                                                                    const int8_t (*shift)[3], const int *of)
 {
   const int i = k.i;
   const int pk[3] = {images[i].k[0], images[i].k[1], images[i].k[2]};
   const CellImage *IM = images.data();
-  if (DIM == 3 && !GRAV && lanes && offer_cells_lanes<LATEST>(k, first, nfirst, shift, of)) return;
+  if (DIM == 3 && !GRAV && lanes && offer_cells_lanes<LATEST, SHEARED>(k, first, nfirst, shift, of)) return;
   for (int f = 0; f < nfirst; f++) {
     const int8_t *u = shift ? shift[of[f]] : nullptr;
     const int k0 = u ? pk[0] + u[0] : pk[0], k1 = u ? pk[1] + u[1] : pk[1], k2 = u ? pk[2] + u[2] : pk[2];
     for (int j = first[f]; j >= 0; j = IM[j].next)
       if (j != i)
-        offer<DIM, GRAV, LATEST>(k, j, k0 - IM[j].k[0], k1 - IM[j].k[1], DIM == 3 ? k2 - IM[j].k[2] : 0);
+        offer<DIM, GRAV, LATEST, SHEARED>(k, j, k0 - IM[j].k[0], k1 - IM[j].k[1], DIM == 3 ? k2 - IM[j].k[2] : 0);
   }
+}
+
+// the candidates of that block of cells (block_inside) at i's own image (k: i's scan): the
+// first particle of every occupied cell, in cell order, gathered without branches (which cells
+// are empty is random: a branch per cell would be mispredicted often), then offered
+template <int DIM, bool GRAV, bool FULL, bool LATEST, bool SHEARED>
+inline __attribute__((always_inline)) void EDCore::scan_block(Seek &k, const int dlo[3], const int dhi[3])
+{
+  const int16_t *c = schedules[k.i].c;
+  const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
+  const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
+  const int x0 = FULL ? -1 : dlo[0], x1 = FULL ? 1 : dhi[0];
+  const int n0 = nc[0], n1 = nc[1];
+  const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
+  int first[27], nfirst = 0;
+#pragma GCC unroll 3
+  for (int dz = zlo; dz <= zhi; dz++)
+#pragma GCC unroll 3
+    for (int dy = ylo; dy <= yhi; dy++) {
+      const int *h = base + (dz * n1 + dy) * n0;
+#pragma GCC unroll 3
+      for (int dx = x0; dx <= x1; dx++) {
+        const int j = h[dx];
+        first[nfirst] = j;
+        nfirst += j >= 0;
+      }
+    }
+  offer_cells<DIM, GRAV, LATEST, SHEARED>(k, first, nfirst, nullptr, nullptr);
+}
+
+// A sheared box, i in a row inside its band (the rows above and below of the same band, none
+// across a y face): the rows lie over each other as in an unsheared box, and a block inside the
+// grid is scanned as scan_t() scans it, the image shifts taken as contact_at's SHEARED takes
+// them (the particles of a band may lie in different y images). False: not inside the grid.
+template <int DIM, bool GRAV, bool FULL>
+bool EDCore::scan_band_at(int i, const int dlo[3], const int dhi[3])
+{
+  if (!block_inside<DIM, FULL>(i, dlo, dhi)) return false;
+  Seek k = seek(i);
+  if (at_present(i))
+    scan_block<DIM, GRAV, FULL, true, true>(k, dlo, dhi);
+  else
+    scan_block<DIM, GRAV, FULL, false, true>(k, dlo, dhi);
+  settle(k);
+  return true;
 }
 
 // scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,
@@ -365,28 +450,8 @@ void EDCore::scan_t(int i, const int dlo[3], const int dhi[3])
   const int zlo = DIM == 3 ? (FULL ? -1 : dlo[2]) : 0, zhi = DIM == 3 ? (FULL ? 1 : dhi[2]) : 0;
   const int ylo = FULL ? -1 : dlo[1], yhi = FULL ? 1 : dhi[1];
   const int x0 = FULL ? -1 : dlo[0], x1 = FULL ? 1 : dhi[0];
-  // the usual case: the block of cells lies inside the grid (no wrapping, no edges)
-  bool inside = c[0] + x0 >= 0 && c[0] + x1 < nc[0] && c[1] + ylo >= 0 && c[1] + yhi < nc[1];
-  if (DIM == 3) inside = inside && c[2] + zlo >= 0 && c[2] + zhi < nc[2];
-  if (inside) {
-    const int n0 = nc[0], n1 = nc[1];
-    const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
-    // the first particle of every occupied cell, in cell order, gathered without branches
-    // (which cells are empty is random: a branch per cell would be mispredicted often)
-    int first[27], nfirst = 0;
-#pragma GCC unroll 3
-    for (int dz = zlo; dz <= zhi; dz++)
-#pragma GCC unroll 3
-      for (int dy = ylo; dy <= yhi; dy++) {
-        const int *h = base + (dz * n1 + dy) * n0;
-#pragma GCC unroll 3
-        for (int dx = x0; dx <= x1; dx++) {
-          const int j = h[dx];
-          first[nfirst] = j;
-          nfirst += j >= 0;
-        }
-      }
-    offer_cells<DIM, GRAV, LATEST>(k, first, nfirst, nullptr, nullptr);
+  if (block_inside<DIM, FULL>(i, dlo, dhi)) {    // (the usual case)
+    scan_block<DIM, GRAV, FULL, LATEST, false>(k, dlo, dhi);
     settle(k);
     return;
   }

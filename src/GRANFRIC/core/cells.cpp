@@ -177,6 +177,7 @@ void EDCore::setup_cells()
     kcells[d] = opt.periodic[d] ? (double) nc[d] : 0.0;
     kper[d] = opt.periodic[d] ? 0.0 : P[d];
   }
+  if (opt.shear) shear_bands();
   head.assign((size_t) nc[0] * nc[1] * nc[2], -1);
   for (auto &m : images) m.next = -1;
   cell_amax = amax;
@@ -193,7 +194,7 @@ void EDCore::place(int i)
   Schedule &s = schedules[i];
   if (opt.shear) {
     // (Lees-Edwards: the image k1 periods up in y lies k1 s further in x, and the row of cells
-    // c1 is shifted by c1 D: its x cell is that of the position less both)
+    // c1 is shifted by its band's b D: its x cell is that of the position less both)
     int c, k;
     locate(1, x[1], c, k);
     x.x -= k * shift_at(now) + row_shift(c, now);
@@ -218,7 +219,7 @@ void EDCore::place(int i)
 }
 
 // Lees-Edwards: a particle's position and velocity as its x cell sees them: less the shift and
-// the shear rate of its image in y, and less those of its row of cells
+// the shear rate of its image in y, and less those of its band of rows
 void EDCore::sheared_frame(int i, Vec3 &x, Vec3 &v) const
 {
   const int k = images[i].k[1], r = schedules[i].c[1];
@@ -391,12 +392,15 @@ void EDCore::cross(int i)
   count_crossing(i);
   Schedule &p = schedules[i];
   const int d = p.xdim, dir = p.xdir;
-  // (Lees-Edwards: into another row of cells, which is shifted in x, and maybe through a y face
-  // into an image shifted in x: the x cell is found afresh, and the rows next to the particle
-  // are compared before and after)
-  const bool row_change = opt.shear && d == 1;
+  // (Lees-Edwards: into another row of cells, maybe of another band, which is shifted in x, or
+  // through a y face into an image shifted in x: there the x cell is found afresh; the rows next
+  // to the particle are compared before and after. Into a row inside the particle's band, whose
+  // rows lie over each other, none of that: as in an unsheared box.)
+  const int r1 = p.c[1] + dir;
+  const bool row_change = opt.shear && d == 1 && !(r1 >= 0 && r1 < nc[1] && band_interior(r1));
   RowSpan before[9];
   const int nbefore = row_change ? sheared_spans(i, before) : 0;
+  const int band = row_change ? row_band[p.c[1]] : 0, k1 = images[i].k[1];
   cell_remove(i);
   p.c[d] += dir;
   if (p.c[d] == nc[d]) {
@@ -406,7 +410,7 @@ void EDCore::cross(int i)
     p.c[d] = nc[d] - 1;
     images[i].k[d]--;
   }
-  if (row_change) {
+  if (row_change && (row_band[p.c[1]] != band || images[i].k[1] != k1)) {
     int c, k;
     locate(0, pos(i, now).x - (images[i].k[1] * shift_at(now) + row_shift(p.c[1], now)), c, k);
     p.c[0] = (int16_t) c;

@@ -315,24 +315,36 @@ class EDCore {
   // sheared box: sheared_spans)
   static constexpr int AROUND = 27;
   int around(int i, int cell[AROUND], int8_t shift[AROUND][3]) const;
-  // ---- Lees-Edwards (shear.cpp): every row of cells (y cell r) moves with the flow, shifted in
-  // x by r D(t), where D = (s + w L_x) / nc[1] is the shift between neighbouring rows (and,
-  // less w periods, across the y faces); D in cell widths is m + f (0 <= m < nc[0]), and m
-  // changes at shear ticks, at which the pairs of the cells that come next to each other
-  // across every row boundary become candidates
+  // ---- Lees-Edwards (shear.cpp): the rows of cells are grouped in bands of neighbouring rows
+  // that move with the flow together: band b (rows with row_band b) is shifted in x by b D(t),
+  // where D = (s + w L_x) / nbands is the shift between neighbouring bands (and, less w
+  // periods, across the y faces); D in cell widths is m + f (0 <= m < nc[0]), and m changes at
+  // shear ticks, at which the pairs of the cells that come next to each other across every
+  // band boundary become candidates
   int shear_m = 0;
-  int shear_w = 0;                       // 0 <= w < nc[1]
+  int shear_w = 0;                       // 0 <= w < nbands
+  int nbands = 1;
+  std::vector<int> row_band;             // per row of cells (y cell): its band
+  std::vector<uint8_t> row_sheared;      // per row: 1 if the boundary above it is a band's (or the y face)
   double shear_next = NEVER;             // the next shear event's time
   bool shear_wraps = false;              // whether it is the shift's passing a period
+  void shear_bands();                    // (setup_cells(): the bands)
   void shear_schedule();
-  double row_step(double t) const { return (shift_at(t) + shear_w * P.x) / nc[1]; }    // D(t)
-  double row_shift(int r, double t) const { return r * row_step(t); }
-  double row_speed(int r) const { return r * (opt.shear_rate / nc[1]); }
+  double row_step(double t) const { return (shift_at(t) + shear_w * P.x) / nbands; }    // D(t)
+  double row_shift(int r, double t) const { return row_band[r] * row_step(t); }
+  double row_speed(int r) const { return row_band[r] * (opt.shear_rate / nbands); }
+  // whether the boundary between row r and the row above (dir 1) or below (-1) is sheared
+  bool boundary_sheared(int r, int dir) const
+  {
+    return dir > 0 ? row_sheared[r] : (r == 0 ? true : row_sheared[r - 1]);
+  }
+  // whether row r lies inside its band: the rows above and below of its band (no y face)
+  bool band_interior(int r) const { return r > 0 && !row_sheared[r - 1] && !row_sheared[r]; }
   // the cells a particle's scan takes in a sheared box: per row next to it (its first cell in
   // head at row, at y image ky and z image kz; dz the z layer against i's), the x cells a0..a1
-  // counted across images (cell a - q nc[0] at x image q = floor(a / nc[0])), 3 in its own row,
-  // 4 in the rows above and below (the scans gather at most 9 x 4 cells); a0 is cell u at x
-  // image q (start_at moves the start on by a few cells)
+  // counted across images (cell a - q nc[0] at x image q = floor(a / nc[0])), 3 in a row of its
+  // band, 4 in a row across a band boundary (the scans gather at most 9 x 4 cells); a0 is cell u
+  // at x image q (start_at moves the start on by a few cells)
   struct RowSpan {
     int dz, ky, kz, row, q, u;
     long a0, a1;
@@ -349,6 +361,9 @@ class EDCore {
   static long floor_div(long a, long n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
   template <int DIM, bool GRAV, bool LATEST>
   void scan_spans_t(int i, const RowSpan *s, int n);
+  void scan_edge(int i, const RowSpan *s, int n, const int lo[3], const int hi[3]);
+  template <int DIM, bool GRAV, bool LATEST>
+  void scan_edge_t(int i, const RowSpan *s, int n, const int lo[3], const int hi[3]);
   void scan_spans(int i, const RowSpan *s, int n);
   void scan_sheared(int i, bool full, const int dlo[3], const int dhi[3]);
   void scan_new_spans(int i, const RowSpan *before, int nbefore);    // (after a y crossing)
@@ -426,6 +441,20 @@ class EDCore {
   };
   Seek seek(int i) const;            // from i's schedule
   void settle(const Seek &k);        // the best candidate into i's schedule
+  // the block of cells at offsets dlo..dhi around i's inside the grid, scanned at i's own image
+  // (no wrapping, no edges)
+  template <int DIM, bool FULL>
+  bool block_inside(int i, const int dlo[3], const int dhi[3]) const
+  {
+    const int16_t *c = schedules[i].c;
+    for (int d = 0; d < DIM; d++)
+      if (c[d] + (FULL ? -1 : dlo[d]) < 0 || c[d] + (FULL ? 1 : dhi[d]) >= nc[d]) return false;
+    return true;
+  }
+  template <int DIM, bool GRAV, bool FULL, bool LATEST, bool SHEARED>
+  void scan_block(Seek &k, const int dlo[3], const int dhi[3]);
+  template <int DIM, bool GRAV, bool FULL>
+  bool scan_band_at(int i, const int dlo[3], const int dhi[3]);    // (a sheared box: band_interior)
   // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV, bool LATEST, bool SHEARED = false>
   void offer(Seek &k, int j, int o0, int o1, int o2);
@@ -446,12 +475,14 @@ class EDCore {
   void offer_lanes(Seek &k, const ListEntry *e, const int *js, int n);
   template <bool LATEST>
   bool offer_spans_lanes(Seek &k, const RowSpan *s, int n);
-  template <bool LATEST>
+  template <int DIM, bool GRAV, bool LATEST>
+  void offer_spans(Seek &k, const RowSpan *s, int n);
+  template <bool LATEST, bool SHEARED = false>
   bool offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
   double at_least_now(double t) const { return t < now ? now : t; }    // (a contact time)
   // the candidates in the cells whose first particles a scan gathered (shift: their image
   // shifts, the f-th at of[f]; null: none)
-  template <int DIM, bool GRAV, bool LATEST>
+  template <int DIM, bool GRAV, bool LATEST, bool SHEARED = false>
   void offer_cells(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
   // the canonical contact time of stored states p and q at the image shift o (q's position +
   // o P), >= now; NEVER also where it is certainly >= before

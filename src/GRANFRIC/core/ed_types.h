@@ -141,6 +141,9 @@ struct EDOptions {
   // > 0: cells at least this wide (never narrower than the largest contact distance); 0: the
   // automatic width (see setup_cells). For benchmarks of the cell width.
   double cell_width = 0.0;
+  // a sheared box (shear): > 0, the rows of cells that move together as one band (see
+  // shear.cpp); 0: the automatic choice (EDCore::shear_bands). For tests and benchmarks.
+  int shear_band = 0;
   // how candidate partners are found: CELLS (cell crossings), LISTS (neighbour lists; not with
   // gravity) or AUTO (lists in small dense 3d systems without gravity, see choose_lists)
   enum Neighbours { AUTO = 0, CELLS = 1, LISTS = 2 };
@@ -192,6 +195,7 @@ struct EDOptions {
     f("simd", TUNING, s.simd...), f("prefetch_bytes", TUNING, s.prefetch_bytes...);
     f("tick_last", TUNING, s.tick_last...);
     f("shear", DEFINING, s.shear...), f("shear_rate", DEFINING, s.shear_rate...);
+    f("shear_band", DEFINING, s.shear_band...);
   }
   // every field by name and value, in the order of each_field (for messages and logs)
   std::string describe() const;

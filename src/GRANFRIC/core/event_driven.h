@@ -139,6 +139,7 @@ class EventDriven : private EDCore {
   // the largest radius the cell grid of the last start() admits
   double cell_radius() const { return cell_amax; }
   double cell_size() const { return cw[0]; }    // the cell width in x (after start())
+  int shear_band_count() const { return nbands; }    // a sheared box's bands of rows (after start())
   using EDCore::have_lanes;              // the processor has AVX2 (EDOptions::simd can use it)
   bool uses_lists() const { return lists; }     // neighbour lists (after start())
   using EDCore::MAX_LISTS;               // the most particles that get lists automatically

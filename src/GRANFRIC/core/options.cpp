@@ -68,6 +68,7 @@ static void check_options(const EDOptions &o, int nt, const std::vector<LawParam
     throw std::invalid_argument("shear (Lees-Edwards) needs periodic x and y");
   if (o.shear && o.neighbours == EDOptions::LISTS)
     throw std::invalid_argument("shear (Lees-Edwards) works with cells, not neighbour lists");
+  if (o.shear_band < 0) throw std::invalid_argument("the rows per band of a sheared box must be >= 0 (0: automatic)");
   for (int d = 0; d < o.dim; d++)
     if (!o.periodic[d] && !walled[d] && !o.open[d])
       throw std::invalid_argument("a non-periodic dimension needs at least one wall");

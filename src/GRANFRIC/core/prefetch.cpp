@@ -46,17 +46,19 @@ void EDCore::prefetch_around(int i, bool deep) const
   const Schedule &p = schedules[i];
   int16_t c[3] = {p.c[0], p.c[1], p.c[2]};
   if (p.ekind == CROSSING) c[p.xdim] = (int16_t) (c[p.xdim] + p.xdir);
-  // (a sheared box: into the row above or below, whose cells lie about m further back or on)
-  if (p.ekind == CROSSING && opt.shear && p.xdim == 1) c[0] = (int16_t) (c[0] - p.xdir * shear_m);
+  // (a sheared box: into the row above or below across a band boundary, whose cells lie about m
+  // further back or on)
+  if (p.ekind == CROSSING && opt.shear && p.xdim == 1 && boundary_sheared(p.c[1], p.xdir))
+    c[0] = (int16_t) (c[0] - p.xdir * shear_m);
   const int dz1 = opt.dim == 3 ? 1 : 0;
   if (c[0] < 1 || c[0] + 1 >= nc[0] || c[1] < 1 || c[1] + 1 >= nc[1] || c[2] < dz1 || c[2] + dz1 >= nc[2])
     return;
   const int *base = head.data() + (c[2] * nc[1] + c[1]) * nc[0] + c[0];
   for (int dz = -dz1; dz <= dz1; dz++)
     for (int dy = -1; dy <= 1; dy++) {
-      // (a sheared box: the 4 cells of the rows above and below that sheared_spans takes)
+      // (a sheared box: the 4 cells of the rows across a band boundary that sheared_spans takes)
       int x0 = -1, x1 = 1;
-      if (opt.shear && dy) {
+      if (opt.shear && dy && boundary_sheared(c[1], dy)) {
         x0 = dy > 0 ? -shear_m - 2 : shear_m - 1;
         x1 = x0 + 3;
         if (c[0] + x0 < 0 || c[0] + x1 >= nc[0]) continue;

@@ -6,25 +6,34 @@
 // and o_y times the shear rate in velocity (EDCore::image, contact_at, collide_pair).
 //
 // The cells move with the flow, so that a particle crosses them at its speed relative to the
-// flow rather than at the streaming speed, which grows with the box: the row of cells c1 (its y
-// cell) is shifted in x by c1 D(t), D = (s + w L_x) / n_y (row_step), and moves at c1 times
-// the shear rate over n_y. Neighbouring rows are then shifted by D against each other, and so
-// are the top row and the bottom row of the image one period up (s - (n_y - 1) D = D - w L_x:
-// the same shift, less w periods of x): every boundary between rows is sheared alike. A
-// particle in image k_y and row c1 has its x cell from its position less k_y s + c1 D (place,
-// sheared_frame); a crossing into another row finds its x cell afresh (cross).
+// flow rather than at the streaming speed, which grows with the box. They move in bands of
+// neighbouring rows (row_band; shear_bands chooses how many rows a band takes): band b is
+// shifted in x by b D(t), D = (s + w L_x) / n_b (row_step), and moves at b times the shear rate
+// over n_b. Neighbouring bands are then shifted by D against each other, and so are the top
+// band and the bottom band of the image one period up (s - (n_b - 1) D = D - w L_x: the same
+// shift, less w periods of x): every boundary between bands is sheared alike, and the rows
+// within a band lie over each other as in an unsheared box. A particle in image k_y and band b
+// has its x cell from its position less k_y s + b D (place, sheared_frame); a crossing into
+// another row finds its x cell afresh (cross).
 //
-// Which cells of neighbouring rows are next to each other changes with D alone, without any
+// Wider bands take fewer scans across sheared boundaries, whose rows take 4 cells instead of 3
+// at image shifts of their own (a row inside its band is scanned as in an unsheared box), and a
+// particle crosses the cells of a band at its speed relative to the band, which differs from
+// the flow's by up to half the band's share of the shear. shear_bands sizes the bands between
+// the two.
+//
+// Which cells of neighbouring bands are next to each other changes with D alone, without any
 // event of a particle: every time D passes a multiple of the x cell width (a shear tick) one new
-// cell comes next to each cell from the row above, and the pairs of the two cells are offered to
-// both partners as candidates (shear_tick). Between ticks a particle's scan takes the 4 cells of
-// the rows above and below that can hold a partner (sheared_spans). The shift s is kept within
-// [0, L_x): a period is taken from it when it passes L_x (or 0), at a time that depends on s
-// alone, and w counts the periods taken (shear_relabel). D stays within [0, L_x): when w reaches
-// n_y, D has passed a period with s, w starts again and the images' labels follow (row_relabel).
-// So the numbers stay as precise as in the first period.
+// cell comes next to each cell from the row above a band's boundary, and the pairs of the two
+// cells are offered to both partners as candidates (shear_tick). Between ticks a particle's scan
+// takes the 4 cells of a row across a band boundary that can hold a partner (sheared_spans). The
+// shift s is kept within [0, L_x): a period is taken from it when it passes L_x (or 0), at a
+// time that depends on s alone, and w counts the periods taken (shear_relabel). D stays within
+// [0, L_x): when w reaches n_b, D has passed a period with s, w starts again and the images'
+// labels follow (row_relabel). So the numbers stay as precise as in the first period.
 #include "event_driven.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace granfric {
@@ -61,7 +70,7 @@ void EDCore::shear_schedule()
   double tick_at = NEVER;
   if (dir > 0 ? shear_m + 1 < nc[0] : shear_m > 0) {
     const double edge = (dir > 0 ? shear_m + 1 : shear_m) * cw[0];
-    tick_at = std::max(now, (nc[1] * edge - shear_w * P.x - shear_s0) / u);
+    tick_at = std::max(now, (nbands * edge - shear_w * P.x - shear_s0) / u);
   }
   shear_wraps = !(tick_at < wrap);
   shear_next = shear_wraps ? wrap : tick_at;
@@ -77,11 +86,12 @@ void EDCore::shear_cells()
 }
 
 // The rows of cells next to particle i's and the x cells of each that can hold a partner: its
-// own row, x cells c0 - 1 .. c0 + 1; the row above, shifted by D = (m + f) cell widths, the 4
-// x cells from c0 - m - 2 on (a partner within a cell width lies within 2 + f cells less m);
-// the row below, the 4 from c0 + m - 1 on. Across a y face the row is that of the image up or
-// down, w periods of x further (s - (n_y - 1) D = D - w L_x). Counted across images: x cell a
-// of a row is its cell a - q nc[0] at x image q.
+// own row and a row of its band, x cells c0 - 1 .. c0 + 1; the row above across a band boundary,
+// shifted by D = (m + f) cell widths, the 4 x cells from c0 - m - 2 on (a partner within a cell
+// width lies within 2 + f cells less m); the row below across one, the 4 from c0 + m - 1 on.
+// Across a y face the row is that of the image up or down, w periods of x further
+// (s - (n_b - 1) D = D - w L_x). Counted across images: x cell a of a row is its cell
+// a - q nc[0] at x image q.
 template <int DIM>
 inline __attribute__((always_inline)) int EDCore::sheared_spans_t(int i, RowSpan out[9]) const
 {
@@ -90,10 +100,13 @@ inline __attribute__((always_inline)) int EDCore::sheared_spans_t(int i, RowSpan
   const int n0 = nc[0], n1 = nc[1];
   const long C = c[0] + (long) n0 * pk[0], face = (long) shear_w * n0;
   // the rows below, at and above i's (y cell, y image, first x cell: counted across images,
-  // and as cell u at x image q, found without a division)
+  // and as cell u at x image q, found without a division; m 0 across no band boundary)
+  const bool sb = boundary_sheared(c[1], -1), sa = row_sheared[c[1]];
+  const int mb = sb ? shear_m : 0, ma = sa ? shear_m + 1 : 0;
   int cy[3] = {c[1] - 1, c[1], c[1] + 1}, ky[3] = {pk[1], pk[1], pk[1]};
-  long a0[3] = {C + shear_m - 1, C - 1, C - shear_m - 2};
-  int u[3] = {c[0] + shear_m - 1, c[0] - 1, c[0] - shear_m - 2}, q[3] = {pk[0], pk[0], pk[0]};
+  long a0[3] = {C + mb - 1, C - 1, C - ma - 1};
+  int u[3] = {c[0] + mb - 1, c[0] - 1, c[0] - ma - 1}, q[3] = {pk[0], pk[0], pk[0]};
+  const int wide[3] = {sb, 0, sa};
   if (cy[0] < 0) cy[0] += n1, ky[0]--, a0[0] -= face, q[0] -= shear_w;
   if (cy[2] >= n1) cy[2] -= n1, ky[2]++, a0[2] += face, q[2] += shear_w;
   for (int r = 0; r < 3; r++) {
@@ -119,7 +132,7 @@ inline __attribute__((always_inline)) int EDCore::sheared_spans_t(int i, RowSpan
       s.dz = dz, s.ky = ky[r], s.kz = kz;
       s.row = (cz * n1 + cy[r]) * n0, s.q = q[r], s.u = u[r];
       s.a0 = a0[r];
-      s.a1 = a0[r] + (r == 1 ? 2 : 3);
+      s.a1 = a0[r] + 2 + wide[r];
     }
   }
   return n;
@@ -147,6 +160,25 @@ void EDCore::scan_sheared(int i, bool full, const int dlo[3], const int dhi[3])
     for (int r = 0; r < n; r++)
       if (s[r].dz == dlo[2]) s[m++] = s[r];
     n = m;
+  }
+  // (a row at the edge of its band, no y face: the rows of its band as an unsheared scan takes
+  // them where their block lies inside the grid, the row across the boundary by its spans; the
+  // spans come in threes, below, at and above i's row)
+  const int y = schedules[i].c[1];
+  if (y > 0 && y + 1 < nc[1] && row_sheared[y] != row_sheared[y - 1]) {
+    const int across = row_sheared[y] ? 1 : -1;
+    int lo[3], hi[3];
+    for (int d = 0; d < 3; d++) lo[d] = full ? -1 : dlo[d], hi[d] = full ? 1 : dhi[d];
+    if (across > 0) hi[1] = std::min(hi[1], 0);
+    else lo[1] = std::max(lo[1], 0);
+    const bool inside = opt.dim == 3 ? block_inside<3, false>(i, lo, hi) : block_inside<2, false>(i, lo, hi);
+    if (inside) {
+      int m = 0;
+      for (int r = 0; r < n; r++)
+        if (r % 3 == across + 1) s[m++] = s[r];
+      scan_edge(i, s, m, lo, hi);
+      return;
+    }
   }
   scan_spans(i, s, n);
 }
@@ -181,7 +213,7 @@ void EDCore::scan_new_spans(int i, const RowSpan *before, int nbefore)
 }
 
 // A shear event (shear_schedule): the shift has passed a period, or D a multiple of the cell
-// width; at a tick, the new pairs across every row boundary
+// width; at a tick, the new pairs across every band boundary
 void EDCore::shear_tick()
 {
   now = shear_next;
@@ -189,7 +221,7 @@ void EDCore::shear_tick()
   const int ny = nc[1];
   if (shear_wraps) {
     shear_relabel(dir);
-    if (shear_w >= 0 && shear_w < ny) {
+    if (shear_w >= 0 && shear_w < nbands) {
       shear_schedule();
       return;
     }
@@ -205,6 +237,7 @@ void EDCore::shear_tick()
   const long n0 = nc[0];
   for (int a2 = 0; a2 < nc[2]; a2++)
     for (int a1 = 0; a1 < ny; a1++) {
+      if (!row_sheared[a1]) continue;
       const int b1 = a1 + 1 == ny ? 0 : a1 + 1, ky = a1 + 1 == ny ? 1 : 0;
       for (int a0 = 0; a0 < nc[0]; a0++) {
         const int A = (a2 * ny + a1) * nc[0] + a0;
@@ -250,13 +283,43 @@ void EDCore::shear_relabel(int dir)
   }
 }
 
-// D less dir periods of x (w back to the other end): the row c1 is shifted c1 periods less, and
-// the x images of its particles gain dir c1 (image shifts of pairs are displacements and stay)
+// D less dir periods of x (w back to the other end): band b is shifted b periods less, and the
+// x images of its particles gain dir b (image shifts of pairs are displacements and stay)
 void EDCore::row_relabel(int dir)
 {
-  shear_w -= dir * nc[1];
+  shear_w -= dir * nbands;
   const int n = (int) schedules.size();
-  for (int i = 0; i < n; i++) images[i].k[0] += dir * schedules[i].c[1];
+  for (int i = 0; i < n; i++) images[i].k[0] += dir * row_band[schedules[i].c[1]];
+}
+
+// The bands of rows (setup_cells(), before the particles are placed): EDOptions::shear_band
+// rows each, or as many as keep the flow's difference across a band within f times the spread
+// of x velocities about the streaming profile (of the particles present; one row where they are
+// at rest on it): f = 1 in 2d, 3 in 3d, where a row across a band boundary costs 3 layers of
+// cells (the optima of instructions per collision, bench/README.md, "Sheared boxes"). Bands of
+// n_y / n_b rows, some one more.
+void EDCore::shear_bands()
+{
+  const int ny = nc[1];
+  int rows = opt.shear_band;
+  if (rows == 0) {
+    double n = 0.0, sum = 0.0, sum2 = 0.0;
+    const double rate = opt.shear_rate / P.y;
+    for (size_t i = 0; i < flights.size(); i++) {
+      if (schedules[i].gone) continue;
+      const double u = vel((int) i, now).x - rate * (pos((int) i, now).y - opt.lo[1]);
+      n += 1.0, sum += u, sum2 += u * u;
+    }
+    const double spread = n > 1.0 ? std::sqrt(std::max(0.0, sum2 / n - (sum / n) * (sum / n))) : 0.0;
+    const double per_row = std::fabs(opt.shear_rate) / ny;
+    const double f = opt.dim == 3 ? 3.0 : 1.0;
+    rows = per_row == 0.0 ? ny : (int) std::min<double>(ny, std::floor(f * spread / per_row));
+  }
+  nbands = std::max(1, ny / std::max(1, rows));
+  row_band.resize(ny);
+  row_sheared.resize(ny);
+  for (int r = 0; r < ny; r++) row_band[r] = (int) ((long) r * nbands / ny);
+  for (int r = 0; r < ny; r++) row_sheared[r] = r + 1 == ny || row_band[r + 1] != row_band[r];
 }
 
 }    // namespace granfric
