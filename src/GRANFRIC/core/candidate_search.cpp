@@ -67,44 +67,10 @@ template <int DIM, bool GRAV, bool LATEST>
 void EDCore::scan_spans_t(int i, const RowSpan *s, int n)
 {
   Seek k = seek(i);
-  offer_spans<DIM, GRAV, LATEST>(k, s, n);
-  settle(k);
-}
-
-// A row at the edge of its band (one neighbouring row across a band boundary, no y face), its
-// block of cells lo..hi of the rows of its band inside the grid: those as an unsheared scan
-// takes them (scan_block), the row across the boundary by its spans s
-template <int DIM, bool GRAV, bool LATEST>
-void EDCore::scan_edge_t(int i, const RowSpan *s, int n, const int lo[3], const int hi[3])
-{
-  Seek k = seek(i);
-  scan_block<DIM, GRAV, false, LATEST, true>(k, lo, hi);
-  offer_spans<DIM, GRAV, LATEST>(k, s, n);
-  settle(k);
-}
-
-void EDCore::scan_edge(int i, const RowSpan *s, int n, const int lo[3], const int hi[3])
-{
-  const bool latest = at_present(i);
-  if (opt.dim == 2) {
-    if (has_gravity)
-      latest ? scan_edge_t<2, true, true>(i, s, n, lo, hi) : scan_edge_t<2, true, false>(i, s, n, lo, hi);
-    else
-      latest ? scan_edge_t<2, false, true>(i, s, n, lo, hi) : scan_edge_t<2, false, false>(i, s, n, lo, hi);
-  } else {
-    if (has_gravity)
-      latest ? scan_edge_t<3, true, true>(i, s, n, lo, hi) : scan_edge_t<3, true, false>(i, s, n, lo, hi);
-    else
-      latest ? scan_edge_t<3, false, true>(i, s, n, lo, hi) : scan_edge_t<3, false, false>(i, s, n, lo, hi);
+  if (DIM == 3 && !GRAV && lanes && offer_spans_lanes<LATEST>(k, s, n)) {
+    settle(k);
+    return;
   }
-}
-
-// the candidates in the spans s into a scan in progress (k)
-template <int DIM, bool GRAV, bool LATEST>
-inline __attribute__((always_inline)) void EDCore::offer_spans(Seek &k, const RowSpan *s, int n)
-{
-  const int i = k.i;
-  if (DIM == 3 && !GRAV && lanes && offer_spans_lanes<LATEST>(k, s, n)) return;
   const CellImage *IM = images.data();
   const int n0 = nc[0];
   // the occupied cells of every row, in order, gathered first without a branch per cell (which
@@ -127,6 +93,7 @@ inline __attribute__((always_inline)) void EDCore::offer_spans(Seek &k, const Ro
       if (j != i)
         offer<DIM, GRAV, LATEST, true>(k, j, qs[f] - IM[j].k[0], w.ky - IM[j].k[1], DIM == 3 ? w.kz - IM[j].k[2] : 0);
   }
+  settle(k);
 }
 
 void EDCore::scan_spans(int i, const RowSpan *s, int n)

@@ -361,9 +361,6 @@ class EDCore {
   static long floor_div(long a, long n) { return a >= 0 ? a / n : -((-a + n - 1) / n); }
   template <int DIM, bool GRAV, bool LATEST>
   void scan_spans_t(int i, const RowSpan *s, int n);
-  void scan_edge(int i, const RowSpan *s, int n, const int lo[3], const int hi[3]);
-  template <int DIM, bool GRAV, bool LATEST>
-  void scan_edge_t(int i, const RowSpan *s, int n, const int lo[3], const int hi[3]);
   void scan_spans(int i, const RowSpan *s, int n);
   void scan_sheared(int i, bool full, const int dlo[3], const int dhi[3]);
   void scan_new_spans(int i, const RowSpan *before, int nbefore);    // (after a y crossing)
@@ -475,8 +472,6 @@ class EDCore {
   void offer_lanes(Seek &k, const ListEntry *e, const int *js, int n);
   template <bool LATEST>
   bool offer_spans_lanes(Seek &k, const RowSpan *s, int n);
-  template <int DIM, bool GRAV, bool LATEST>
-  void offer_spans(Seek &k, const RowSpan *s, int n);
   template <bool LATEST, bool SHEARED = false>
   bool offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
   double at_least_now(double t) const { return t < now ? now : t; }    // (a contact time)

@@ -161,25 +161,6 @@ void EDCore::scan_sheared(int i, bool full, const int dlo[3], const int dhi[3])
       if (s[r].dz == dlo[2]) s[m++] = s[r];
     n = m;
   }
-  // (a row at the edge of its band, no y face: the rows of its band as an unsheared scan takes
-  // them where their block lies inside the grid, the row across the boundary by its spans; the
-  // spans come in threes, below, at and above i's row)
-  const int y = schedules[i].c[1];
-  if (y > 0 && y + 1 < nc[1] && row_sheared[y] != row_sheared[y - 1]) {
-    const int across = row_sheared[y] ? 1 : -1;
-    int lo[3], hi[3];
-    for (int d = 0; d < 3; d++) lo[d] = full ? -1 : dlo[d], hi[d] = full ? 1 : dhi[d];
-    if (across > 0) hi[1] = std::min(hi[1], 0);
-    else lo[1] = std::max(lo[1], 0);
-    const bool inside = opt.dim == 3 ? block_inside<3, false>(i, lo, hi) : block_inside<2, false>(i, lo, hi);
-    if (inside) {
-      int m = 0;
-      for (int r = 0; r < n; r++)
-        if (r % 3 == across + 1) s[m++] = s[r];
-      scan_edge(i, s, m, lo, hi);
-      return;
-    }
-  }
   scan_spans(i, s, n);
 }
 
