@@ -291,9 +291,10 @@ bool EDCore::offer_spans_lanes(Seek &k, const RowSpan *s, int n)
   int js[LANE_BUFFER], nj = 0;
   ListEntry buf[LANE_BUFFER];
   int nb = 0, wide = 0;
-  // (the occupied cells of the rows at i's own image, in order, gathered first without a branch
-  // per cell, as scan_t() does; their candidates go to the lanes after the other rows')
-  int first[9 * 4], nf = 0;
+  // (the occupied cells of every row, in order, gathered first without a branch per cell, as
+  // scan_t() does: of the rows at i's own image, whose candidates go to the lanes after the
+  // other rows', and of the others, with their x image and row)
+  int first[9 * 4], nf = 0, other[9 * 4], oq[9 * 4], orow[9 * 4], no = 0;
   for (int r = 0; r < n; r++) {
     const RowSpan &w = s[r];
     const int *row = head.data() + w.row;
@@ -307,22 +308,28 @@ bool EDCore::offer_spans_lanes(Seek &k, const RowSpan *s, int n)
     }
     int q = w.q, u = w.u;
     for (long a = w.a0; a <= w.a1; a++) {
-      for (int j = row[u]; j >= 0; j = IM[j].next) {
-        const int o0 = q - IM[j].k[0], o1 = w.ky - IM[j].k[1], o2 = w.kz - IM[j].k[2];
-        wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
-        buf[nb] = ListEntry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
-        nb += j != i;
-        if (nb == LANE_BUFFER) {
-          if (wide & ~255) break;
-          offer_lanes<LATEST, false, true>(k, buf, nullptr, nb);
-          nb = 0;
-        }
-      }
-      if (wide & ~255) {
-        k = start;
-        return false;
-      }
+      const int j = row[u];
+      other[no] = j, oq[no] = q, orow[no] = r;
+      no += j >= 0;
       if (++u == n0) u = 0, q++;
+    }
+  }
+  for (int f = 0; f < no; f++) {
+    const RowSpan &w = s[orow[f]];
+    for (int j = other[f]; j >= 0; j = IM[j].next) {
+      const int o0 = oq[f] - IM[j].k[0], o1 = w.ky - IM[j].k[1], o2 = w.kz - IM[j].k[2];
+      wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
+      buf[nb] = ListEntry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
+      nb += j != i;
+      if (nb == LANE_BUFFER) {
+        if (wide & ~255) break;
+        offer_lanes<LATEST, false, true>(k, buf, nullptr, nb);
+        nb = 0;
+      }
+    }
+    if (wide & ~255) {
+      k = start;
+      return false;
     }
   }
   for (int f = 0; f < nf; f++)

@@ -324,15 +324,16 @@ class EDCore {
   int shear_m = 0;
   int shear_w = 0;                       // 0 <= w < nbands
   int nbands = 1;
+  double band_scale = 1.0, band_rate = 0.0;    // 1 / n_b, and the shear rate over n_b
   std::vector<int> row_band;             // per row of cells (y cell): its band
   std::vector<uint8_t> row_sheared;      // per row: 1 if the boundary above it is a band's (or the y face)
   double shear_next = NEVER;             // the next shear event's time
   bool shear_wraps = false;              // whether it is the shift's passing a period
   void shear_bands();                    // (setup_cells(): the bands)
   void shear_schedule();
-  double row_step(double t) const { return (shift_at(t) + shear_w * P.x) / nbands; }    // D(t)
+  double row_step(double t) const { return (shift_at(t) + shear_w * P.x) * band_scale; }    // D(t)
   double row_shift(int r, double t) const { return row_band[r] * row_step(t); }
-  double row_speed(int r) const { return row_band[r] * (opt.shear_rate / nbands); }
+  double row_speed(int r) const { return row_band[r] * band_rate; }
   // whether the boundary between row r and the row above (dir 1) or below (-1) is sheared
   bool boundary_sheared(int r, int dir) const
   {

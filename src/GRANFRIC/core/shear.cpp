@@ -297,6 +297,8 @@ void EDCore::shear_bands()
     rows = per_row == 0.0 ? ny : (int) std::min<double>(ny, std::floor(f * spread / per_row));
   }
   nbands = std::max(1, ny / std::max(1, rows));
+  band_scale = 1.0 / nbands;    // (products where the crossings are predicted: no division)
+  band_rate = opt.shear_rate * band_scale;
   row_band.resize(ny);
   row_sheared.resize(ny);
   for (int r = 0; r < ny; r++) row_band[r] = (int) ((long) r * nbands / ny);
