@@ -95,9 +95,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ShearCase{0, 3, 200, 0.1, 3.0, 0.05, 3}),
     shear_name);
 
-// The rows of cells move with the flow and are shifted by D = (s + w L_x) / n_y against each
-// other: fast shear in dilute gases over long runs, so that D passes whole periods of x (its
-// labels start again), in both directions; the brute-force reference knows nothing of rows
+// The bands of rows of cells move with the flow and are shifted by D = (s + w L_x) / n_b
+// against each other (n_b <= n_y bands): fast shear in dilute gases over long runs, so that D
+// passes whole periods of x (its labels start again), in both directions; the brute-force
+// reference knows nothing of rows
 TEST(Shear, RowsPassingWholePeriodsEqualReference)
 {
   const ShearCase cases[] = {ShearCase{0, 2, 8, 0.01, 3.0, 0.5, 0}, ShearCase{2, 2, 8, 0.01, -3.0, 1.0, 0},

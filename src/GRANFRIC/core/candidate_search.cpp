@@ -225,6 +225,28 @@ inline void EDCore::settle(const Seek &k)
   s.coff[0] = k.o[0], s.coff[1] = k.o[1], s.coff[2] = k.o[2];
 }
 
+// The particles of the cell list headed by j0, reached at image (k0, k1, k2) (their image shifts
+// that less their own images), as list entries into buf, offered in lanes whenever it fills;
+// false: a shift beyond an entry's range (wide gathers the shifts' range bits)
+template <bool LATEST, bool SHEARED>
+inline __attribute__((always_inline)) bool EDCore::buffer_cell(Seek &k, int j0, int k0, int k1, int k2,
+                                                                   ListEntry *buf, int &nb, int &wide)
+{
+  const CellImage *IM = images.data();
+  for (int j = j0; j >= 0; j = IM[j].next) {
+    const int o0 = k0 - IM[j].k[0], o1 = k1 - IM[j].k[1], o2 = k2 - IM[j].k[2];
+    wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
+    buf[nb] = ListEntry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
+    nb += j != k.i;
+    if (nb == LANE_BUFFER) {
+      if (wide & ~255) return false;
+      offer_lanes<LATEST, false, SHEARED>(k, buf, nullptr, nb);
+      nb = 0;
+    }
+  }
+  return !(wide & ~255);
+}
+
 // offer_cells() in 3d without gravity: the candidates as list entries, offered in lanes (as
 // many at a time as a buffer holds). False (k as it was): a shift beyond an entry's range.
 template <bool LATEST, bool SHEARED>
@@ -254,19 +276,7 @@ bool EDCore::offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8
   int wide = 0;
   for (int f = 0; f < nfirst; f++) {
     const int8_t *u = shift[of[f]];
-    const int k0 = pk[0] + u[0], k1 = pk[1] + u[1], k2 = pk[2] + u[2];
-    for (int j = first[f]; j >= 0; j = IM[j].next) {
-      const int o0 = k0 - IM[j].k[0], o1 = k1 - IM[j].k[1], o2 = k2 - IM[j].k[2];
-      wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
-      buf[nb] = ListEntry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
-      nb += j != i;
-      if (nb == LANE_BUFFER) {
-        if (wide & ~255) break;
-        offer_lanes<LATEST, false, SHEARED>(k, buf, nullptr, nb);
-        nb = 0;
-      }
-    }
-    if (wide & ~255) {
+    if (!buffer_cell<LATEST, SHEARED>(k, first[f], pk[0] + u[0], pk[1] + u[1], pk[2] + u[2], buf, nb, wide)) {
       k = start;
       return false;
     }
@@ -316,18 +326,7 @@ bool EDCore::offer_spans_lanes(Seek &k, const RowSpan *s, int n)
   }
   for (int f = 0; f < no; f++) {
     const RowSpan &w = s[orow[f]];
-    for (int j = other[f]; j >= 0; j = IM[j].next) {
-      const int o0 = oq[f] - IM[j].k[0], o1 = w.ky - IM[j].k[1], o2 = w.kz - IM[j].k[2];
-      wide |= (o0 + 128) | (o1 + 128) | (o2 + 128);    // (bits above 8: out of range)
-      buf[nb] = ListEntry{j, {(int8_t) o0, (int8_t) o1, (int8_t) o2}, 0};
-      nb += j != i;
-      if (nb == LANE_BUFFER) {
-        if (wide & ~255) break;
-        offer_lanes<LATEST, false, true>(k, buf, nullptr, nb);
-        nb = 0;
-      }
-    }
-    if (wide & ~255) {
+    if (!buffer_cell<LATEST, true>(k, other[f], oq[f], w.ky, w.kz, buf, nb, wide)) {
       k = start;
       return false;
     }

@@ -475,6 +475,8 @@ class EDCore {
   bool offer_spans_lanes(Seek &k, const RowSpan *s, int n);
   template <bool LATEST, bool SHEARED = false>
   bool offer_cells_lanes(Seek &k, const int *first, int nfirst, const int8_t (*shift)[3], const int *of);
+  template <bool LATEST, bool SHEARED>
+  bool buffer_cell(Seek &k, int j0, int k0, int k1, int k2, ListEntry *buf, int &nb, int &wide);
   double at_least_now(double t) const { return t < now ? now : t; }    // (a contact time)
   // the candidates in the cells whose first particles a scan gathered (shift: their image
   // shifts, the f-th at of[f]; null: none)

@@ -32,7 +32,7 @@
 //   global_events.cpp    instants at which every particle may change (kicks)
 //   prefetch.cpp         asking the memory ahead for the records of the events to come
 //   cells.cpp            the cell grid, cell order and cell crossings
-//   shear.cpp            Lees-Edwards boundaries: rows of cells moving with the flow, shear ticks
+//   shear.cpp            Lees-Edwards boundaries: bands of rows of cells moving with the flow, shear ticks
 //   candidate_search.cpp the search for collision candidates and their contact times (four at a
 //                        time in AVX2 lanes: candidate_lanes.cpp), and for overlaps
 //   neighbour_lists.cpp  neighbour lists and their rebuild events
