@@ -139,7 +139,10 @@ TEST(Shear, RowsPassingWholePeriodsEqualReference)
 // The rows of cells move in bands (EDOptions::shear_band rows each, the last ones one more
 // where they do not divide the rows): every choice, from a band per row to one band for the
 // box, gives the reference's trajectory and the same bits as a band per row, the cells being
-// only where candidates are looked for; in 2d and 3d, slow and fast shear of either sign
+// only where candidates are looked for; in 2d and 3d, slow and fast shear of either sign. (Each
+// window starts afresh here. With the queue kept across windows the images' shift is carried
+// forward at every window, a pair predicted again later may differ in its last bit, and the
+// cells decide when: there the bits depend on the bands.)
 TEST(Shear, BandsOfRowsGiveTheSameBits)
 {
   const ShearCase cases[] = {ShearCase{0, 2, 200, 0.2, 1.0, 1.0, 3}, ShearCase{2, 2, 200, 0.1, -3.0, 0.5, 3},

@@ -14,7 +14,7 @@
 // shift, less w periods of x): every boundary between bands is sheared alike, and the rows
 // within a band lie over each other as in an unsheared box. A particle in image k_y and band b
 // has its x cell from its position less k_y s + b D (place, sheared_frame); a crossing into
-// another row finds its x cell afresh (cross).
+// another band, or through a y face, finds its x cell afresh (cross).
 //
 // Wider bands take fewer scans across sheared boundaries, whose rows take 4 cells instead of 3
 // at image shifts of their own (a row inside its band is scanned as in an unsheared box), and a
