@@ -429,11 +429,6 @@ void HardsphereGatherWindow::undo_rounding()
   const hardsphere::FarWrap wrap(domain);
   const hardsphere::ShearWrap shear(domain, state.pbc_xy, state.view_xy, state.view_u);
   for (int s = 0; s < ntotal; s++) {
-    if (s + AHEAD < ntotal) {    // (the atoms in the order of their IDs: their records are far apart)
-      ed.prefetch_particle(s + AHEAD);
-      __builtin_prefetch(atom->x[order[s + AHEAD]]);
-      __builtin_prefetch(atom->v[order[s + AHEAD]]);
-    }
     double w[9], *x = atom->x[order[s]];
     written_state(s, T, w);
     if (sheared) {
