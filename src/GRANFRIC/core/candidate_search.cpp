@@ -28,14 +28,11 @@ template <bool FULL>
 void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 {
   if (opt.shear) {    // (a sheared box: its cells move with the flow, see shear.cpp)
-    if (band_interior(schedules[i].c[1])) {
-      const bool done = opt.dim == 2 ? (has_gravity ? scan_band_at<2, true, FULL>(i, dlo, dhi)
-                                                    : scan_band_at<2, false, FULL>(i, dlo, dhi))
-                                     : (has_gravity ? scan_band_at<3, true, FULL>(i, dlo, dhi)
-                                                    : scan_band_at<3, false, FULL>(i, dlo, dhi));
-      if (done) return;
-    }
-    scan_sheared(i, FULL, dlo, dhi);
+    const bool done = opt.dim == 2 ? (has_gravity ? scan_rows_at<2, true, FULL>(i, dlo, dhi)
+                                                  : scan_rows_at<2, false, FULL>(i, dlo, dhi))
+                                   : (has_gravity ? scan_rows_at<3, true, FULL>(i, dlo, dhi)
+                                                  : scan_rows_at<3, false, FULL>(i, dlo, dhi));
+    if (!done) scan_sheared(i, FULL, dlo, dhi);
     return;
   }
   if (opt.dim == 2) {
@@ -407,6 +404,70 @@ bool EDCore::scan_band_at(int i, const int dlo[3], const int dhi[3])
     scan_block<DIM, GRAV, FULL, false, true>(k, dlo, dhi);
   settle(k);
   return true;
+}
+
+// A sheared box, i in a row at the edge of its band (one of its two boundaries is a band's, and
+// the row across it lies in i's y image): the two rows of i's band as scan_block() takes them,
+// and the 4 cells of the row across that sheared_spans() takes, from x offset f on, inside the
+// grid all three, so that every cell is at i's own images and all are gathered alike, without
+// the spans' wrapping. A crossing in x takes the leading cell of every row (as scan_sheared()),
+// one in z the new layer. False: not so (scan_sheared()).
+template <int DIM, bool GRAV, bool FULL>
+bool EDCore::scan_edge_at(int i, const int dlo[3], const int dhi[3])
+{
+  const int16_t *c = schedules[i].c;
+  const int n0 = nc[0], n1 = nc[1];
+  const bool above = row_sheared[c[1]];
+  if (above == boundary_sheared(c[1], -1)) return false;    // (both: a band of one row)
+  const int ya = above ? 1 : -1;                             // the row across
+  if (c[1] - 1 < 0 || c[1] + 1 >= n1) return false;          // (a y face)
+  const int f = above ? -shear_m - 2 : shear_m - 1;
+  int x0 = -1, x1 = 1, a0 = f, a1 = f + 3, zlo = DIM == 3 ? -1 : 0, zhi = DIM == 3 ? 1 : 0;
+  if (!FULL) {
+    const bool xfull = dlo[0] == -1 && dhi[0] == 1, zfull = DIM == 2 || (dlo[2] == -1 && dhi[2] == 1);
+    if (dlo[1] != -1 || dhi[1] != 1) return false;
+    if (dlo[0] == dhi[0] && zfull) {
+      x0 = x1 = dlo[0];
+      a0 = a1 = dlo[0] > 0 ? f + 3 : f;
+    } else if (DIM == 3 && dlo[2] == dhi[2] && xfull) {
+      zlo = zhi = dlo[2];
+    } else {
+      return false;
+    }
+  }
+  if (c[0] + x0 < 0 || c[0] + x1 >= n0 || c[0] + a0 < 0 || c[0] + a1 >= n0) return false;
+  if (DIM == 3 && (c[2] + zlo < 0 || c[2] + zhi >= nc[2])) return false;
+  const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
+  int first[3 * 10], nfirst = 0;
+#pragma GCC unroll 3
+  for (int dz = zlo; dz <= zhi; dz++)
+#pragma GCC unroll 3
+    for (int dy = -1; dy <= 1; dy++) {
+      const int *h = base + (dz * n1 + dy) * n0;
+      const bool across = dy == ya;
+      const int lo = across ? a0 : x0, n = FULL ? (across ? 4 : 3) : (across ? a1 - a0 : x1 - x0) + 1;
+#pragma GCC unroll 4
+      for (int q = 0; q < n; q++) {
+        const int j = h[lo + q];
+        first[nfirst] = j;
+        nfirst += j >= 0;
+      }
+    }
+  Seek k = seek(i);
+  if (at_present(i))
+    offer_cells<DIM, GRAV, true, true>(k, first, nfirst, nullptr, nullptr);
+  else
+    offer_cells<DIM, GRAV, false, true>(k, first, nfirst, nullptr, nullptr);
+  settle(k);
+  return true;
+}
+
+// the scans of a sheared box's rows that need no spans: inside a band or at its edge
+template <int DIM, bool GRAV, bool FULL>
+bool EDCore::scan_rows_at(int i, const int dlo[3], const int dhi[3])
+{
+  return band_interior(schedules[i].c[1]) ? scan_band_at<DIM, GRAV, FULL>(i, dlo, dhi)
+                                          : scan_edge_at<DIM, GRAV, FULL>(i, dlo, dhi);
 }
 
 // scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,

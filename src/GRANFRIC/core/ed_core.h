@@ -453,6 +453,10 @@ class EDCore {
   void scan_block(Seek &k, const int dlo[3], const int dhi[3]);
   template <int DIM, bool GRAV, bool FULL>
   bool scan_band_at(int i, const int dlo[3], const int dhi[3]);    // (a sheared box: band_interior)
+  template <int DIM, bool GRAV, bool FULL>
+  bool scan_edge_at(int i, const int dlo[3], const int dhi[3]);    // (at a band's edge)
+  template <int DIM, bool GRAV, bool FULL>
+  bool scan_rows_at(int i, const int dlo[3], const int dhi[3]);
   // one candidate j at the image shift o (j's position + o P)
   template <int DIM, bool GRAV, bool LATEST, bool SHEARED = false>
   void offer(Seek &k, int j, int o0, int o1, int o2);
