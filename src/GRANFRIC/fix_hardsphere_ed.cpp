@@ -302,7 +302,7 @@ void FixHardsphereED::undo_rounding()
   // (after a restart file was written the next window starts from the atoms as the file holds
   // them, as a run that reads it does: see resync_for_restart)
   if (resync) return;
-  if (run->atoms.stored())
+  if (run->atoms.stored() || (domain->triclinic && run->atoms.keeps_written()))
     run->atoms.undo_rounding(domain->triclinic, run->pbc_xy, run->view_xy, run->view_u);
   else
     gwin->undo_rounding();

@@ -31,6 +31,14 @@ HardsphereAtomStates::~HardsphereAtomStates()
   memory->destroy(tlast);
   memory->destroy(atally);
   memory->destroy(xstate);
+  memory->destroy(wrote);
+}
+
+void HardsphereAtomStates::keep_written()
+{
+  if (wrote) return;
+  memory->create(wrote, 1, WR_SIZE, "hardsphere/ed:wrote");
+  grow(atom->nmax);
 }
 
 void HardsphereAtomStates::request_tallies()
@@ -54,6 +62,11 @@ void HardsphereAtomStates::grow(int nmax)
     for (int i = xstate_n; i < nmax; i++) xstate[i][XS_T] = xstate[i][XS_WX] = xstate[i][XS_WW] = NAN;
     xstate_n = std::max(xstate_n, nmax);
   }
+  if (wrote) {
+    memory->grow(wrote, nmax, WR_SIZE, "hardsphere/ed:wrote");
+    for (int i = wrote_n; i < nmax; i++) wrote[i][WR_X] = NAN;
+    wrote_n = std::max(wrote_n, nmax);
+  }
   if (atally) {
     memory->grow(atally, nmax, NTALLY, "hardsphere/ed:atally");
     for (int i = atally_n; i < nmax; i++)
@@ -66,6 +79,7 @@ void HardsphereAtomStates::copy(int i, int j)
 {
   if (tlast) tlast[j] = tlast[i];
   if (xstate) memcpy(xstate[j], xstate[i], XS_SIZE * sizeof(double));
+  if (wrote) memcpy(wrote[j], wrote[i], WR_SIZE * sizeof(double));
   if (atally) memcpy(atally[j], atally[i], NTALLY * sizeof(double));
 }
 
@@ -91,6 +105,7 @@ int HardsphereAtomStates::unpack(int i, const double *buf)
   if (tlast) tlast[i] = buf[m++];
   if (xstate)
     for (int k = 0; k < XS_SIZE; k++) xstate[i][k] = buf[m++];
+  if (wrote) wrote[i][WR_X] = NAN;
   if (atally)
     for (int k = 0; k < NTALLY; k++) atally[i][k] = buf[m++];
   return m;
@@ -98,7 +113,7 @@ int HardsphereAtomStates::unpack(int i, const double *buf)
 
 double HardsphereAtomStates::memory_usage() const
 {
-  return (double) atom->nmax * sizeof(double) * per_atom();
+  return (double) atom->nmax * sizeof(double) * (per_atom() + (wrote ? WR_SIZE : 0));
 }
 
 AtomRecord HardsphereAtomStates::record(int i, bool exact, double clock) const
@@ -246,17 +261,21 @@ void HardsphereAtomStates::note_positions(double now)
 
 void HardsphereAtomStates::undo_rounding(bool sheared, double pbc_xy, double xy, double u)
 {
-  if (!xstate) return;
+  if (!xstate && !(sheared && wrote)) return;
   const hardsphere::FarWrap wrap(domain);
   const hardsphere::ShearWrap shear(domain, pbc_xy, xy, u);
   for (int i = 0; i < atom->nlocal; i++) {
-    const double *wx = xstate[i] + XS_WX;
+    const double *wx = xstate ? xstate[i] + XS_WX : wrote[i] + WR_X;
     double *x = atom->x[i];
     if (std::isnan(wx[0])) continue;
     if (sheared) {
       int k[3];
       double c[3], *v = atom->v[i];
-      if (!std::isnan(xstate[i][XS_WV]) && shear.match(x, v[0], wx, xstate[i][XS_WV], k, c, v[0]))
+      const double wvx = xstate ? xstate[i][XS_WV] : wrote[i][WR_VX];
+      if (std::isnan(wvx)) continue;
+      if (shear.unwrapped(x, v[0], wx, wvx))
+        std::memcpy(x, wx, sizeof c);
+      else if (shear.match(x, v[0], wx, wvx, k, c, v[0]))
         std::memcpy(x, c, sizeof c);
       continue;
     }

@@ -43,6 +43,9 @@ class HardsphereAtomStates : protected Pointers {
   // (-1: none)
   enum { T_VIRIAL = 0, T_COLL = 6, T_WALL, T_DETR, T_DEROT, T_DEWALL, T_LAST, NTALLY };
 
+  // what a serial window wrote into a sheared box's atoms (kept_written): x (3) and v_x
+  enum { WR_X = 0, WR_VX = 3, WR_SIZE = 4 };
+
   // stored: keep stored states; tc: keep last collision times
   HardsphereAtomStates(LAMMPS *lmp, bool stored, bool tc);
   ~HardsphereAtomStates() override;
@@ -57,6 +60,17 @@ class HardsphereAtomStates : protected Pointers {
   int per_atom() const;                       // doubles per atom in an exchange
   double memory_usage() const;
   void request_tallies();                     // from now on (allocated once)
+
+  // a serial run in a sheared box keeps what its windows wrote into x and v_x (not in
+  // exchanges: an atom that arrives has none), for undo_rounding, which then needs neither the
+  // core nor its order; from now on (allocated once)
+  void keep_written();
+  bool keeps_written() const { return wrote != nullptr; }
+  void store_written(int i, const double *x, double vx)
+  {
+    double *r = wrote[i];
+    r[WR_X] = x[0], r[WR_X + 1] = x[1], r[WR_X + 2] = x[2], r[WR_VX] = vx;
+  }
 
   bool stored() const { return xstate != nullptr; }
   bool has_tlast() const { return tlast != nullptr; }
@@ -96,13 +110,16 @@ class HardsphereAtomStates : protected Pointers {
   // In a sheared box (triclinic, Lees-Edwards: sheared) LAMMPS rounds every position when it
   // reneighbors, and an atom wrapped through a y face changes its x velocity by fix deform's
   // rate: both are put back as written with the tilt xy and its rate u (hardsphere::ShearWrap;
-  // pbc_xy: the box's tilt when they were written)
+  // pbc_xy: the box's tilt when they were written), from the stored states or from what a
+  // serial run kept (keep_written)
   void note_positions(double now);
   void undo_rounding(bool sheared, double pbc_xy, double xy, double u);
 
  private:
   double **xstate = nullptr;    // (null unless stored)
   int xstate_n = 0;             // rows set (t = NaN: none yet, when grown)
+  double **wrote = nullptr;     // (null unless keep_written)
+  int wrote_n = 0;              // rows set (x = NaN: none, when grown)
   double *tlast = nullptr;      // (null unless tc)
   int tlast_n = 0;              // entries set (to -inf when grown)
   double **atally = nullptr;    // (null until asked for)

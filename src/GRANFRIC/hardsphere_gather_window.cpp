@@ -191,6 +191,7 @@ bool HardsphereGatherWindow::reusable_sheared(int s, const double *bx, const dou
   for (int d = 0; d < 3; d++)
     if (bw[d] != w[6 + d]) return false;
   if (bv[1] != w[4] || bv[2] != w[5]) return false;
+  if (wrap.unwrapped(bx, bv[0], w, w[3])) return true;    // (periods unchanged)
   int k[3];
   double c[3], cvx;
   if (!wrap.match(bx, bv[0], w, w[3], k, c, cvx)) return false;
@@ -373,6 +374,9 @@ void HardsphereGatherWindow::take_back(double T1)
   // (sheared: y first, whose offset moves x by the tilt and the x velocity by its rate)
   const int dims[3] = {sheared ? 1 : 0, sheared ? (noff == 3 ? 2 : 0) : 1, sheared ? 0 : 2};
   const bool per_atom = state.atoms.per_atom() > 0;    // (read once)
+  // (a serial run in a sheared box keeps what it writes: see undo_rounding)
+  if (sheared && comm->nprocs == 1 && !state.atoms.stored()) state.atoms.keep_written();
+  const bool written = state.atoms.keeps_written();
   for (int s = 0; s < ntotal; s++) {
     if (s + AHEAD < ntotal) ed.prefetch_particle(s + AHEAD);
     const int i = order[s] - myfirst;    // its owned atom, or none
@@ -398,6 +402,7 @@ void HardsphereGatherWindow::take_back(double T1)
     memcpy(atom->x[i], w, 3 * sizeof(double));
     memcpy(atom->v[i], w + 3, 3 * sizeof(double));
     memcpy(atom->omega[i], w + 6, 3 * sizeof(double));
+    if (written) state.atoms.store_written(i, w, w[3]);
     if (per_atom) keep_atom(i, s, stored, w);
   }
   valid = !offsets_full;
@@ -418,26 +423,21 @@ void HardsphereGatherWindow::keep_atom(int i, int s, const int8_t *stored, const
 // and back, which may round it in the last place (FarWrap::match). Runs on several ranks put
 // such atoms back from their stored states; a serial run keeps none, but its core still holds
 // what this window wrote at the end of the last step (written_state), the same numbers. So a
-// new epoch begins from the same positions whatever the number of ranks.
+// new epoch begins from the same positions whatever the number of ranks. (A serial run in a
+// sheared box, rounded at every reneighboring, keeps what it wrote instead: take_back,
+// HardsphereAtomStates::keep_written.)
 void HardsphereGatherWindow::undo_rounding()
 {
-  if (comm->nprocs > 1 || !valid || !state.core_kept_by(this) || ed.size() != atom->nlocal) return;
+  if (comm->nprocs > 1 || sheared || !valid || !state.core_kept_by(this) || ed.size() != atom->nlocal)
+    return;
   ntotal = atom->nlocal;
   order_by_id();
   if (!same_atoms || (int) offset.size() != noff * ntotal) return;
   const double T = state.epoch_time(update->ntimestep);    // (the last window's end)
   const hardsphere::FarWrap wrap(domain);
-  const hardsphere::ShearWrap shear(domain, state.pbc_xy, state.view_xy, state.view_u);
   for (int s = 0; s < ntotal; s++) {
     double w[9], *x = atom->x[order[s]];
     written_state(s, T, w);
-    if (sheared) {
-      // (positions and the x velocity, both as written with the anchored tilt and rate)
-      int k[3];
-      double c[3], *v = atom->v[order[s]];
-      if (shear.match(x, v[0], w, w[3], k, c, v[0])) std::memcpy(x, c, sizeof c);
-      continue;
-    }
     for (int d = 0; d < 3; d++) {
       int k;
       double c;

@@ -88,8 +88,7 @@ namespace hardsphere {
   {
     // (as written, or rounded as a reneighboring rounds most atoms every step: no wrap, and
     // every test below would give the same)
-    if (bvx == wvx && std::fabs(b[0] - w[0]) <= tolx && wrap.unwrapped(1, b[1], w[1]) &&
-        wrap.unwrapped(2, b[2], w[2])) {
+    if (unwrapped(b, bvx, w, wvx)) {
       for (int d = 0; d < 3; d++) k[d] = 0, c[d] = w[d];
       cvx = wvx;
       return true;

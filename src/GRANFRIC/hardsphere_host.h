@@ -128,6 +128,13 @@ namespace hardsphere {
     ShearWrap(const Domain *domain, double pbc_xy, double xy, double u);
     bool match(const double *b, double bvx, const double *w, double wvx, int *k, double *c,
                double &cvx) const;    // (c and cvx set only if true)
+    // would match() find the atom to be w itself (k = 0, c = w, cvx = wvx)? The usual case
+    // (no wrap, rounded as a reneighboring rounds most atoms every step), tested inline
+    bool unwrapped(const double *b, double bvx, const double *w, double wvx) const
+    {
+      return bvx == wvx && std::fabs(b[0] - w[0]) <= tolx && wrap.unwrapped(1, b[1], w[1]) &&
+          wrap.unwrapped(2, b[2], w[2]);
+    }
 
    private:
     FarWrap wrap;
