@@ -411,7 +411,8 @@ bool EDCore::scan_band_at(int i, const int dlo[3], const int dhi[3])
 // and the 4 cells of the row across that sheared_spans() takes, from x offset f on, inside the
 // grid all three, so that every cell is at i's own images and all are gathered alike, without
 // the spans' wrapping. A crossing in x takes the leading cell of every row (as scan_sheared()),
-// one in z the new layer. False: not so (scan_sheared()).
+// one in z the new layer, one in y within the band the row across. False: not so
+// (scan_sheared()).
 template <int DIM, bool GRAV, bool FULL>
 bool EDCore::scan_edge_at(int i, const int dlo[3], const int dhi[3])
 {
@@ -422,11 +423,15 @@ bool EDCore::scan_edge_at(int i, const int dlo[3], const int dhi[3])
   const int ya = above ? 1 : -1;                             // the row across
   if (c[1] - 1 < 0 || c[1] + 1 >= n1) return false;          // (a y face)
   const int f = above ? -shear_m - 2 : shear_m - 1;
-  int x0 = -1, x1 = 1, a0 = f, a1 = f + 3, zlo = DIM == 3 ? -1 : 0, zhi = DIM == 3 ? 1 : 0;
+  int x0 = -1, x1 = 1, a0 = f, a1 = f + 3, y0 = -1, y1 = 1, zlo = DIM == 3 ? -1 : 0, zhi = DIM == 3 ? 1 : 0;
   if (!FULL) {
     const bool xfull = dlo[0] == -1 && dhi[0] == 1, zfull = DIM == 2 || (dlo[2] == -1 && dhi[2] == 1);
-    if (dlo[1] != -1 || dhi[1] != 1) return false;
-    if (dlo[0] == dhi[0] && zfull) {
+    if (dlo[1] == dhi[1] && xfull && zfull) {
+      if (dlo[1] != ya) return false;
+      y0 = y1 = ya;
+    } else if (dlo[1] != -1 || dhi[1] != 1) {
+      return false;
+    } else if (dlo[0] == dhi[0] && zfull) {
       x0 = x1 = dlo[0];
       a0 = a1 = dlo[0] > 0 ? f + 3 : f;
     } else if (DIM == 3 && dlo[2] == dhi[2] && xfull) {
@@ -442,7 +447,7 @@ bool EDCore::scan_edge_at(int i, const int dlo[3], const int dhi[3])
 #pragma GCC unroll 3
   for (int dz = zlo; dz <= zhi; dz++)
 #pragma GCC unroll 3
-    for (int dy = -1; dy <= 1; dy++) {
+    for (int dy = FULL ? -1 : y0; dy <= (FULL ? 1 : y1); dy++) {
       const int *h = base + (dz * n1 + dy) * n0;
       const bool across = dy == ya;
       const int lo = across ? a0 : x0, n = FULL ? (across ? 4 : 3) : (across ? a1 - a0 : x1 - x0) + 1;

@@ -392,12 +392,11 @@ void EDCore::cross(int i)
   count_crossing(i);
   Schedule &p = schedules[i];
   const int d = p.xdim, dir = p.xdir;
-  // (Lees-Edwards: into another row of cells, maybe of another band, which is shifted in x, or
+  // (Lees-Edwards: through a band boundary into another band, which is shifted in x, or
   // through a y face into an image shifted in x: there the x cell is found afresh; the rows next
-  // to the particle are compared before and after. Into a row inside the particle's band, whose
+  // to the particle are compared before and after. Into another row of the particle's band, whose
   // rows lie over each other, none of that: as in an unsheared box.)
-  const int r1 = p.c[1] + dir;
-  const bool row_change = opt.shear && d == 1 && !(r1 >= 0 && r1 < nc[1] && band_interior(r1));
+  const bool row_change = opt.shear && d == 1 && boundary_sheared(p.c[1], dir);
   RowSpan before[9];
   const int nbefore = row_change ? sheared_spans(i, before) : 0;
   const int band = row_change ? row_band[p.c[1]] : 0, k1 = images[i].k[1];

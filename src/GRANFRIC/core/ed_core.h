@@ -342,12 +342,12 @@ class EDCore {
   // whether row r lies inside its band: the rows above and below of its band (no y face)
   bool band_interior(int r) const { return r > 0 && !row_sheared[r - 1] && !row_sheared[r]; }
   // the cells a particle's scan takes in a sheared box: per row next to it (its first cell in
-  // head at row, at y image ky and z image kz; dz the z layer against i's), the x cells a0..a1
-  // counted across images (cell a - q nc[0] at x image q = floor(a / nc[0])), 3 in a row of its
-  // band, 4 in a row across a band boundary (the scans gather at most 9 x 4 cells); a0 is cell u
-  // at x image q (start_at moves the start on by a few cells)
+  // head at row, at y image ky and z image kz; dy, dz its row and z layer against i's), the x
+  // cells a0..a1 counted across images (cell a - q nc[0] at x image q = floor(a / nc[0])), 3 in
+  // a row of its band, 4 in a row across a band boundary (the scans gather at most 9 x 4
+  // cells); a0 is cell u at x image q (start_at moves the start on by a few cells)
   struct RowSpan {
-    int dz, ky, kz, row, q, u;
+    int dy, dz, ky, kz, row, q, u;
     long a0, a1;
     void start_at(long a, int n0)
     {

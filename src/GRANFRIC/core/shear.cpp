@@ -129,7 +129,7 @@ inline __attribute__((always_inline)) int EDCore::sheared_spans_t(int i, RowSpan
     }
     for (int r = 0; r < 3; r++) {
       RowSpan &s = out[n++];
-      s.dz = dz, s.ky = ky[r], s.kz = kz;
+      s.dy = r - 1, s.dz = dz, s.ky = ky[r], s.kz = kz;
       s.row = (cz * n1 + cy[r]) * n0, s.q = q[r], s.u = u[r];
       s.a0 = a0[r];
       s.a1 = a0[r] + 2 + wide[r];
@@ -143,9 +143,9 @@ int EDCore::sheared_spans(int i, RowSpan out[9]) const
   return opt.dim == 3 ? sheared_spans_t<3>(i, out) : sheared_spans_t<2>(i, out);
 }
 
-// scan() in a sheared box: every row next to i (full), or the cells that a crossing in x or z
-// (the offsets dlo..dhi of one layer) has just brought next to it: in x the leading cell of
-// every row, in z the rows of the new layer
+// scan() in a sheared box: every row next to i (full), or the cells that a crossing in x, y or
+// z (the offsets dlo..dhi of one layer) has just brought next to it: in x the leading cell of
+// every row, in y (within a band) the row ahead, in z the rows of the new layer
 void EDCore::scan_sheared(int i, bool full, const int dlo[3], const int dhi[3])
 {
   RowSpan s[9];
@@ -155,10 +155,11 @@ void EDCore::scan_sheared(int i, bool full, const int dlo[3], const int dhi[3])
       if (dlo[0] > 0) s[r].start_at(s[r].a1, nc[0]);
       else s[r].a1 = s[r].a0;
     }
-  } else if (!full && opt.dim == 3 && dlo[2] == dhi[2]) {
+  } else if (!full && (dlo[1] == dhi[1] || (opt.dim == 3 && dlo[2] == dhi[2]))) {
+    const bool y = dlo[1] == dhi[1];
     int m = 0;
     for (int r = 0; r < n; r++)
-      if (s[r].dz == dlo[2]) s[m++] = s[r];
+      if (y ? s[r].dy == dlo[1] : s[r].dz == dlo[2]) s[m++] = s[r];
     n = m;
   }
   scan_spans(i, s, n);
