@@ -262,27 +262,35 @@ void HardsphereAtomStates::note_positions(double now)
 void HardsphereAtomStates::undo_rounding(bool sheared, double pbc_xy, double xy, double u)
 {
   if (!xstate && !(sheared && wrote)) return;
-  const hardsphere::FarWrap wrap(domain);
-  const hardsphere::ShearWrap shear(domain, pbc_xy, xy, u);
-  for (int i = 0; i < atom->nlocal; i++) {
-    const double *wx = xstate ? xstate[i] + XS_WX : wrote[i] + WR_X;
-    double *x = atom->x[i];
-    if (std::isnan(wx[0])) continue;
-    if (sheared) {
+  const int n = atom->nlocal;
+  if (n == 0) return;
+  // (the rows lie one after another, as LAMMPS allocates per-atom arrays: what was written, in
+  // the stored states or kept by a serial run, every stride doubles)
+  const double *w = xstate ? xstate[0] + XS_WX : wrote[0] + WR_X;
+  const int stride = xstate ? (int) XS_SIZE : (int) WR_SIZE;
+  const int wv = xstate ? (int) XS_WV - XS_WX : (int) WR_VX - WR_X;
+  double *x = atom->x[0], *v = atom->v[0];
+  if (sheared) {
+    const hardsphere::ShearWrap shear(domain, pbc_xy, xy, u);
+    for (int i = 0; i < n; i++, w += stride, x += 3, v += 3) {
+      const double wvx = w[wv];
+      if (std::isnan(w[0]) || std::isnan(wvx)) continue;
       int k[3];
-      double c[3], *v = atom->v[i];
-      const double wvx = xstate ? xstate[i][XS_WV] : wrote[i][WR_VX];
-      if (std::isnan(wvx)) continue;
-      if (shear.unwrapped(x, v[0], wx, wvx))
-        std::memcpy(x, wx, sizeof c);
-      else if (shear.match(x, v[0], wx, wvx, k, c, v[0]))
-        std::memcpy(x, c, sizeof c);
-      continue;
+      double c[3];
+      if (shear.unwrapped(x, v[0], w, wvx))
+        x[0] = w[0], x[1] = w[1], x[2] = w[2];
+      else if (shear.match(x, v[0], w, wvx, k, c, v[0]))
+        x[0] = c[0], x[1] = c[1], x[2] = c[2];
     }
+    return;
+  }
+  const hardsphere::FarWrap wrap(domain);
+  for (int i = 0; i < n; i++, w += stride, x += 3) {
+    if (std::isnan(w[0])) continue;
     for (int d = 0; d < 3; d++) {
       int k;
       double c;
-      if (x[d] != wx[d] && wrap.match(d, x[d], wx[d], k, c)) x[d] = c;
+      if (x[d] != w[d] && wrap.match(d, x[d], w[d], k, c)) x[d] = c;
     }
   }
 }

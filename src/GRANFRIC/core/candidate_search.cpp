@@ -444,20 +444,28 @@ bool EDCore::scan_edge_at(int i, const int dlo[3], const int dhi[3])
   if (DIM == 3 && (c[2] + zlo < 0 || c[2] + zhi >= nc[2])) return false;
   const int *base = head.data() + (c[2] * n1 + c[1]) * n0 + c[0];
   int first[3 * 10], nfirst = 0;
-#pragma GCC unroll 3
-  for (int dz = zlo; dz <= zhi; dz++)
-#pragma GCC unroll 3
-    for (int dy = FULL ? -1 : y0; dy <= (FULL ? 1 : y1); dy++) {
-      const int *h = base + (dz * n1 + dy) * n0;
-      const bool across = dy == ya;
-      const int lo = across ? a0 : x0, n = FULL ? (across ? 4 : 3) : (across ? a1 - a0 : x1 - x0) + 1;
+  // (the first particles of the occupied cells of n cells from h on, without a branch per cell;
+  // n known at compile time in a full scan)
+  auto take = [&](const int *h, int n) __attribute__((always_inline)) {
 #pragma GCC unroll 4
-      for (int q = 0; q < n; q++) {
-        const int j = h[lo + q];
-        first[nfirst] = j;
-        nfirst += j >= 0;
-      }
+    for (int q = 0; q < n; q++) {
+      const int j = h[q];
+      first[nfirst] = j;
+      nfirst += j >= 0;
     }
+  };
+#pragma GCC unroll 3
+  for (int dz = zlo; dz <= zhi; dz++) {
+    const int *h = base + dz * n1 * n0;
+    if (FULL && ya > 0) {    // (rows in order of y, as scan_block() takes them)
+      take(h - n0 - 1, 3), take(h - 1, 3), take(h + n0 + a0, 4);
+    } else if (FULL) {
+      take(h - n0 + a0, 4), take(h - 1, 3), take(h + n0 - 1, 3);
+    } else {
+      for (int dy = y0; dy <= y1; dy++)
+        dy == ya ? take(h + dy * n0 + a0, a1 - a0 + 1) : take(h + dy * n0 + x0, x1 - x0 + 1);
+    }
+  }
   Seek k = seek(i);
   if (at_present(i))
     offer_cells<DIM, GRAV, true, true>(k, first, nfirst, nullptr, nullptr);
