@@ -218,13 +218,14 @@ void EDCore::place(int i)
   }
 }
 
-// Lees-Edwards: a particle's position and velocity as its x cell sees them: less the shift and
-// the shear rate of its image in y, and less those of its band of rows
-void EDCore::sheared_frame(int i, Vec3 &x, Vec3 &v) const
+// Lees-Edwards: a particle's x position and velocity as its x cell sees them (x0, v0 given as
+// they are): less the shift and the shear rate of its image in y, and less those of its band of
+// rows
+inline __attribute__((always_inline)) void EDCore::sheared_frame(int i, double &x0, double &v0) const
 {
   const int k = images[i].k[1], r = schedules[i].c[1];
-  x.x -= k * shift_at(now) + row_shift(r, now);    // (as place() and cross() take it)
-  v.x -= image_speed(k) + row_speed(r);
+  x0 -= k * shift_at(now) + row_shift(r, now);    // (as place() and cross() take it)
+  v0 -= image_speed(k) + row_speed(r);
 }
 
 // cell c (0 .. nc-1) and periodic image k of coordinate xd in dimension d
@@ -302,38 +303,39 @@ void EDCore::cell_remove(int i)
   *link = images[i].next;
 }
 
+template <bool SHEARED>
 inline __attribute__((always_inline)) void EDCore::predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi)
 {
   if (opt.dim == 2) {
     if (has_gravity)
-      predict_crossing_t<2, true>(i, xi, vi);
+      predict_crossing_t<2, true, SHEARED>(i, xi, vi);
     else
-      predict_crossing_t<2, false>(i, xi, vi);
+      predict_crossing_t<2, false, SHEARED>(i, xi, vi);
   } else {
     if (has_gravity)
-      predict_crossing_t<3, true>(i, xi, vi);
+      predict_crossing_t<3, true, SHEARED>(i, xi, vi);
     else
-      predict_crossing_t<3, false>(i, xi, vi);
+      predict_crossing_t<3, false, SHEARED>(i, xi, vi);
   }
 }
 
 void EDCore::predict_crossing(int i, const Vec3 &xi, const Vec3 &vi)
 {
-  if (opt.shear) {    // (as its sheared row of cells sees it)
-    Vec3 x = xi, v = vi;
-    sheared_frame(i, x, v);
-    predict_crossing_in(i, x, v);
-    return;
-  }
-  predict_crossing_in(i, xi, vi);
+  if (opt.shear)
+    predict_crossing_in<true>(i, xi, vi);
+  else
+    predict_crossing_in<false>(i, xi, vi);
 }
 
-// the dimension and whether there is gravity at all known at compile time
-template <int DIM, bool GRAV>
+// the dimension, whether there is gravity at all and whether the box is sheared known at
+// compile time (SHEARED: x as its sheared row of cells sees it)
+template <int DIM, bool GRAV, bool SHEARED>
 void EDCore::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
 {
   Schedule &p = schedules[i];
   const int *k = images[i].k;
+  double x0 = xi.x, v0 = vi.x;
+  if (SHEARED) sheared_frame(i, x0, v0);
   double xt = NEVER;
   int xdim = 0, xdir = 0;
   auto offer = [&](double t, int d, int dir) {    // (selections by masks, not branches)
@@ -350,21 +352,21 @@ void EDCore::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
         (double) k[d] * kper[d];
   };
   for (int d = 0; d < DIM; d++) {
-    const double v = vi[d];
+    const double v = d == 0 ? v0 : vi[d], x = d == 0 ? x0 : xi[d];
     const bool top = !opt.periodic[d] && p.c[d] == nc[d] - 1;    // no boundary beyond an edge cell
     const bool bottom = !opt.periodic[d] && p.c[d] == 0;
     if (!GRAV || opt.gravity[d] == 0.0) {
       // straight flight: only the boundary ahead can be reached (whether it lies up or down
       // is a coin toss: selected, not branched on; at v = 0 the time is computed and dropped)
       const int up = v > 0.0, ahead = (up & !top) | ((v < 0.0) & !bottom);
-      const double dt = (bound(d, (double) up) - xi[d]) / v;
+      const double dt = (bound(d, (double) up) - x) / v;
       const double t[2] = {NEVER, now + (dt > 0.0 ? dt : 0.0)};
       offer(t[ahead], d, 2 * up - 1);
       continue;
     }
     const double blo = bound(d, 0.0), bhi = bound(d, 1.0);
-    offer(top ? NEVER : now + crossing_time(xi[d], v, opt.gravity[d], bhi, +1), d, 1);
-    offer(bottom ? NEVER : now + crossing_time(xi[d], v, opt.gravity[d], blo, -1), d, -1);
+    offer(top ? NEVER : now + crossing_time(x, v, opt.gravity[d], bhi, +1), d, 1);
+    offer(bottom ? NEVER : now + crossing_time(x, v, opt.gravity[d], blo, -1), d, -1);
   }
   p.xt = xt;
   if (xt < NEVER) p.xdim = (int8_t) xdim, p.xdir = (int8_t) xdir;

@@ -365,7 +365,7 @@ class EDCore {
   void scan_spans(int i, const RowSpan *s, int n);
   void scan_sheared(int i, bool full, const int dlo[3], const int dhi[3]);
   void scan_new_spans(int i, const RowSpan *before, int nbefore);    // (after a y crossing)
-  void sheared_frame(int i, Vec3 &x, Vec3 &v) const;
+  void sheared_frame(int i, double &x0, double &v0) const;
   void shear_start();                    // (start(): the shift into [0, L_x), before the cells)
   void shear_cells();                    // (start(): m and the first event, after the cells)
   void shear_tick();
@@ -374,8 +374,9 @@ class EDCore {
 
   // next cell crossing only; xi, vi: the particle's state now
   void predict_crossing(int i, const Vec3 &xi, const Vec3 &vi);
-  void predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi);    // (in the x cell's frame)
-  template <int DIM, bool GRAV>
+  template <bool SHEARED>
+  void predict_crossing_in(int i, const Vec3 &xi, const Vec3 &vi);
+  template <int DIM, bool GRAV, bool SHEARED>
   void predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi);
   void cross(int i);
 
