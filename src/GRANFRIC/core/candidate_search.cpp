@@ -28,11 +28,7 @@ template <bool FULL>
 void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
 {
   if (opt.shear) {    // (a sheared box: its cells move with the flow, see shear.cpp)
-    const bool done = opt.dim == 2 ? (has_gravity ? scan_rows_at<2, true, FULL>(i, dlo, dhi)
-                                                  : scan_rows_at<2, false, FULL>(i, dlo, dhi))
-                                   : (has_gravity ? scan_rows_at<3, true, FULL>(i, dlo, dhi)
-                                                  : scan_rows_at<3, false, FULL>(i, dlo, dhi));
-    if (!done) scan_sheared(i, FULL, dlo, dhi);
+    scan_shear_in<FULL>(i, dlo, dhi);
     return;
   }
   if (opt.dim == 2) {
@@ -46,6 +42,17 @@ void EDCore::scan_in(int i, const int dlo[3], const int dhi[3])
     else
       scan_at<3, false, FULL>(i, dlo, dhi);
   }
+}
+
+// (out of line: the unsheared scans stay small enough to be inlined where they are called)
+template <bool FULL>
+__attribute__((noinline)) void EDCore::scan_shear_in(int i, const int dlo[3], const int dhi[3])
+{
+  const bool done = opt.dim == 2 ? (has_gravity ? scan_rows_at<2, true, FULL>(i, dlo, dhi)
+                                                : scan_rows_at<2, false, FULL>(i, dlo, dhi))
+                                 : (has_gravity ? scan_rows_at<3, true, FULL>(i, dlo, dhi)
+                                                : scan_rows_at<3, false, FULL>(i, dlo, dhi));
+  if (!done) scan_sheared(i, FULL, dlo, dhi);
 }
 
 // A seeker at the present (as after its collision) is at least as late as every candidate
@@ -406,8 +413,8 @@ bool EDCore::scan_band_at(int i, const int dlo[3], const int dhi[3])
   return true;
 }
 
-// A sheared box, i in a row at the edge of its band (one of its two boundaries is a band's, and
-// the row across it lies in i's y image): the two rows of i's band as scan_block() takes them,
+// A sheared box, i in a row at the edge of its band (ROW_EDGE_UP or ROW_EDGE_DOWN: one of its
+// two boundaries is a band's, and the row across it lies in i's y image): the two rows of i's band as scan_block() takes them,
 // and the 4 cells of the row across that sheared_spans() takes, from x offset f on, inside the
 // grid all three, so that every cell is at i's own images and all are gathered alike, without
 // the spans' wrapping. A crossing in x takes the leading cell of every row (as scan_sheared()),
@@ -418,10 +425,8 @@ bool EDCore::scan_edge_at(int i, const int dlo[3], const int dhi[3])
 {
   const int16_t *c = schedules[i].c;
   const int n0 = nc[0], n1 = nc[1];
-  const bool above = row_sheared[c[1]];
-  if (above == boundary_sheared(c[1], -1)) return false;    // (both: a band of one row)
-  const int ya = above ? 1 : -1;                             // the row across
-  if (c[1] - 1 < 0 || c[1] + 1 >= n1) return false;          // (a y face)
+  const bool above = row_kind[c[1]] == ROW_EDGE_UP;
+  const int ya = above ? 1 : -1;    // the row across
   const int f = above ? -shear_m - 2 : shear_m - 1;
   int x0 = -1, x1 = 1, a0 = f, a1 = f + 3, y0 = -1, y1 = 1, zlo = DIM == 3 ? -1 : 0, zhi = DIM == 3 ? 1 : 0;
   if (!FULL) {
@@ -475,12 +480,14 @@ bool EDCore::scan_edge_at(int i, const int dlo[3], const int dhi[3])
   return true;
 }
 
-// the scans of a sheared box's rows that need no spans: inside a band or at its edge
+// the scans of a sheared box's rows that need no spans: inside a band or at its edge (row_kind)
 template <int DIM, bool GRAV, bool FULL>
 bool EDCore::scan_rows_at(int i, const int dlo[3], const int dhi[3])
 {
-  return band_interior(schedules[i].c[1]) ? scan_band_at<DIM, GRAV, FULL>(i, dlo, dhi)
-                                          : scan_edge_at<DIM, GRAV, FULL>(i, dlo, dhi);
+  const int kind = row_kind[schedules[i].c[1]];
+  return kind == ROW_INSIDE ? scan_band_at<DIM, GRAV, FULL>(i, dlo, dhi)
+      : kind != ROW_SPANS   ? scan_edge_at<DIM, GRAV, FULL>(i, dlo, dhi)
+                            : false;
 }
 
 // scan() for a dimension, with or without gravity, and for the whole neighbourhood (FULL: dlo,

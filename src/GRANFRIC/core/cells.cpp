@@ -334,8 +334,8 @@ void EDCore::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
 {
   Schedule &p = schedules[i];
   const int *k = images[i].k;
-  double x0 = xi.x, v0 = vi.x;
-  if (SHEARED) sheared_frame(i, x0, v0);
+  double xs = 0.0, vs = 0.0;
+  if (SHEARED) xs = xi.x, vs = vi.x, sheared_frame(i, xs, vs);
   double xt = NEVER;
   int xdim = 0, xdir = 0;
   auto offer = [&](double t, int d, int dir) {    // (selections by masks, not branches)
@@ -352,7 +352,7 @@ void EDCore::predict_crossing_t(int i, const Vec3 &xi, const Vec3 &vi)
         (double) k[d] * kper[d];
   };
   for (int d = 0; d < DIM; d++) {
-    const double v = d == 0 ? v0 : vi[d], x = d == 0 ? x0 : xi[d];
+    const double v = SHEARED && d == 0 ? vs : vi[d], x = SHEARED && d == 0 ? xs : xi[d];
     const bool top = !opt.periodic[d] && p.c[d] == nc[d] - 1;    // no boundary beyond an edge cell
     const bool bottom = !opt.periodic[d] && p.c[d] == 0;
     if (!GRAV || opt.gravity[d] == 0.0) {

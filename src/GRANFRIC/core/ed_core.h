@@ -341,6 +341,11 @@ class EDCore {
   }
   // whether row r lies inside its band: the rows above and below of its band (no y face)
   bool band_interior(int r) const { return r > 0 && !row_sheared[r - 1] && !row_sheared[r]; }
+  // how a scan takes the rows next to row r: as a block inside its band (ROW_INSIDE); at the
+  // edge of its band, the boundary above (ROW_EDGE_UP) or below (ROW_EDGE_DOWN) and the row
+  // across in the same y image; else by spans (ROW_SPANS: next to a y face, or a band of one row)
+  enum RowKind : int8_t { ROW_INSIDE, ROW_EDGE_UP, ROW_EDGE_DOWN, ROW_SPANS };
+  std::vector<int8_t> row_kind;
   // the cells a particle's scan takes in a sheared box: per row next to it (its first cell in
   // head at row, at y image ky and z image kz; dy, dz its row and z layer against i's), the x
   // cells a0..a1 counted across images (cell a - q nc[0] at x image q = floor(a / nc[0])), 3 in
@@ -423,6 +428,8 @@ class EDCore {
   void scan_full(int i);    // offsets -1..1 in every dimension
   template <bool FULL>
   void scan_in(int i, const int dlo[3], const int dhi[3]);
+  template <bool FULL>
+  void scan_shear_in(int i, const int dlo[3], const int dhi[3]);    // (a sheared box)
   template <int DIM, bool GRAV, bool FULL>
   void scan_at(int i, const int dlo[3], const int dhi[3]);
   // whether i's stored state is at the present: no stored time is later than now, so i is then

@@ -304,6 +304,13 @@ void EDCore::shear_bands()
   row_sheared.resize(ny);
   for (int r = 0; r < ny; r++) row_band[r] = (int) ((long) r * nbands / ny);
   for (int r = 0; r < ny; r++) row_sheared[r] = r + 1 == ny || row_band[r + 1] != row_band[r];
+  row_kind.resize(ny);
+  for (int r = 0; r < ny; r++) {
+    const bool up = row_sheared[r], down = boundary_sheared(r, -1);
+    row_kind[r] = band_interior(r) ? ROW_INSIDE
+        : r == 0 || r + 1 == ny || up == down ? ROW_SPANS
+        : up ? ROW_EDGE_UP : ROW_EDGE_DOWN;
+  }
 }
 
 }    // namespace granfric
