@@ -173,14 +173,13 @@ inline __attribute__((always_inline)) double EDCore::contact_at(const Flight &p,
   }
   v2d r = xy(a) - bxy;
   double r2 = a.z - b2;
+  v2d v = xy(u) - wxy;
   if (o0 | o1 | o2) {
     const v2d s = {o0 * P.x, o1 * P.y};
     r -= s;
     if (DIM == 3) r2 -= o2 * P.z;
-    if (SHEARED) r[0] -= o1 * shift_at(tr);
+    if (SHEARED) r[0] -= o1 * shift_at(tr), v[0] -= image_speed(o1);
   }
-  v2d v = xy(u) - wxy;
-  if (SHEARED) v[0] -= image_speed(o1);
   const double v2 = DIM == 3 ? u.z - w2 : 0.0;
   const v2d rv = r * v, rr = r * r;
   const double b = DIM == 3 ? (rv[0] + rv[1]) + r2 * v2 : rv[0] + rv[1];
