@@ -54,15 +54,21 @@ void EDCore::prefetch_around(int i, bool deep) const
   if (c[0] < 1 || c[0] + 1 >= nc[0] || c[1] < 1 || c[1] + 1 >= nc[1] || c[2] < dz1 || c[2] + dz1 >= nc[2])
     return;
   const int *base = head.data() + (c[2] * nc[1] + c[1]) * nc[0] + c[0];
+  // (a sheared box: the 4 cells of the rows across a band boundary that sheared_spans takes;
+  // a row whose cells leave the grid is not asked for, lo > hi)
+  int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
+  if (opt.shear)
+    for (int dy = -1; dy <= 1; dy += 2) {
+      if (!boundary_sheared(c[1], dy)) continue;
+      const int x0 = dy > 0 ? -shear_m - 2 : shear_m - 1;
+      const bool inside = c[0] + x0 >= 0 && c[0] + x0 + 3 < nc[0];
+      lo[dy + 1] = inside ? x0 : 1;
+      hi[dy + 1] = inside ? x0 + 3 : 0;
+    }
   for (int dz = -dz1; dz <= dz1; dz++)
     for (int dy = -1; dy <= 1; dy++) {
-      // (a sheared box: the 4 cells of the rows across a band boundary that sheared_spans takes)
-      int x0 = -1, x1 = 1;
-      if (opt.shear && dy && boundary_sheared(c[1], dy)) {
-        x0 = dy > 0 ? -shear_m - 2 : shear_m - 1;
-        x1 = x0 + 3;
-        if (c[0] + x0 < 0 || c[0] + x1 >= nc[0]) continue;
-      }
+      const int x0 = lo[dy + 1], x1 = hi[dy + 1];
+      if (x0 > x1) continue;
       const int *row = base + (dz * nc[1] + dy) * nc[0];
       if (!deep) {
         __builtin_prefetch(row + x0);
