@@ -114,8 +114,9 @@ class FixHardsphereED : public Fix {
   int nlevels_respa = 0;
   bool balancing = false;    // a fix moves the subdomains during the run (fix balance)
   void find_window_parts();
-  // LAMMPS's balance may round positions: every atom moved only so is put back where the last
-  // window wrote it (from the stored states on several ranks, from the core serially)
+  // LAMMPS's balance, and its reneighboring of a triclinic box, may round positions: every atom
+  // moved only so is put back where the last window wrote it (from the stored states on several
+  // ranks, from what a serial run kept in a sheared box, else from the core serially)
   void undo_rounding();
   // a restart file was written: the next window starts afresh from the atoms as the file holds
   // them, as a run continued from that file does (see resync_for_restart)

@@ -41,8 +41,8 @@ class HardsphereGatherWindow : protected Pointers {
   // one window [t0, t0 + dt) of the whole system (redo: after a domain window's conflict)
   void run(double t0, double dt, bool redo);
   // serial runs: put back every atom that LAMMPS moved only by rounding (balance) where this
-  // window wrote it, if the core still holds the atoms (runs on several ranks do it from their
-  // stored states, HardsphereAtomStates::undo_rounding)
+  // window wrote it, if the core still holds the atoms (runs on several ranks, and serial runs
+  // in a sheared box, do it from what they kept, HardsphereAtomStates::undo_rounding)
   void undo_rounding();
   double memory_usage() const;
 
