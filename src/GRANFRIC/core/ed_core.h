@@ -316,13 +316,14 @@ class EDCore {
   static constexpr int AROUND = 27;
   int around(int i, int cell[AROUND], int8_t shift[AROUND][3]) const;
   // ---- Lees-Edwards (shear.cpp): the rows of cells are grouped in bands of neighbouring rows
-  // that move with the flow together: band b (rows with row_band b) is shifted in x by b D(t),
-  // where D = (s + w L_x) / nbands is the shift between neighbouring bands (and, less w
-  // periods, across the y faces); D in cell widths is m + f (0 <= m < nc[0]), and m changes at
-  // shear ticks, at which the pairs of the cells that come next to each other across every
-  // band boundary become candidates
+  // that move with the flow together: band b (rows with row_band b) is shifted in x by
+  // (b + 1/2) D(t) + h L_x / 2, where D = (s + w L_x) / nbands is the shift between
+  // neighbouring bands (and, less w periods, across the y faces); D in cell widths is m + f
+  // (0 <= m < nc[0]), and m changes at shear ticks, at which the pairs of the cells that come
+  // next to each other across every band boundary become candidates
   int shear_m = 0;
   int shear_w = 0;                       // 0 <= w < nbands
+  int shear_h = 0;                       // 0 or 1: half periods of x the bands are shifted
   int nbands = 1;
   double band_scale = 1.0, band_rate = 0.0;    // 1 / n_b, and the shear rate over n_b
   std::vector<int> row_band;             // per row of cells (y cell): its band
@@ -332,8 +333,8 @@ class EDCore {
   void shear_bands();                    // (setup_cells(): the bands)
   void shear_schedule();
   double row_step(double t) const { return (shift_at(t) + shear_w * P.x) * band_scale; }    // D(t)
-  double row_shift(int r, double t) const { return row_band[r] * row_step(t); }
-  double row_speed(int r) const { return row_band[r] * band_rate; }
+  double row_shift(int r, double t) const { return ((2 * row_band[r] + 1) * row_step(t) + shear_h * P.x) * 0.5; }
+  double row_speed(int r) const { return (row_band[r] + 0.5) * band_rate; }
   // whether the boundary between row r and the row above (dir 1) or below (-1) is sheared
   bool boundary_sheared(int r, int dir) const
   {
