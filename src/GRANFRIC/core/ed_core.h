@@ -324,17 +324,24 @@ class EDCore {
   int shear_m = 0;
   int shear_w = 0;                       // 0 <= w < nbands
   int shear_h = 0;                       // 0 or 1: half periods of x the bands are shifted
+  double shear_wp = 0.0, shear_hp = 0.0; // w L_x and h L_x / 2
   int nbands = 1;
   double band_scale = 1.0, band_rate = 0.0;    // 1 / n_b, and the shear rate over n_b
   std::vector<int> row_band;             // per row of cells (y cell): its band
+  std::vector<double> row_mid;           // per row: its band b + 1/2
   std::vector<uint8_t> row_sheared;      // per row: 1 if the boundary above it is a band's (or the y face)
   double shear_next = NEVER;             // the next shear event's time
   bool shear_wraps = false;              // whether it is the shift's passing a period
   void shear_bands();                    // (setup_cells(): the bands)
   void shear_schedule();
-  double row_step(double t) const { return (shift_at(t) + shear_w * P.x) * band_scale; }    // D(t)
-  double row_shift(int r, double t) const { return ((2 * row_band[r] + 1) * row_step(t) + shear_h * P.x) * 0.5; }
-  double row_speed(int r) const { return (row_band[r] + 0.5) * band_rate; }
+  double row_step(double t) const { return (shift_at(t) + shear_wp) * band_scale; }    // D(t)
+  double row_shift(int r, double t) const { return row_mid[r] * row_step(t) + shear_hp; }
+  double row_speed(int r) const { return row_mid[r] * band_rate; }
+  void shear_periods()                   // (w or h changed)
+  {
+    shear_wp = shear_w * P.x;
+    shear_hp = shear_h * P.x * 0.5;
+  }
   // whether the boundary between row r and the row above (dir 1) or below (-1) is sheared
   bool boundary_sheared(int r, int dir) const
   {

@@ -53,6 +53,7 @@ void EDCore::shear_start()
 {
   shear_w = 0;
   shear_h = 0;
+  shear_periods();
   if (!opt.shear) return;
   const double M = std::floor(shift_at(now) / P.x);
   if (M == 0.0) return;
@@ -260,6 +261,7 @@ void EDCore::shear_relabel(int dir)
 {
   shear_s0 -= dir * P.x;
   shear_w += dir;
+  shear_periods();
   const int n = (int) schedules.size();
   for (int i = 0; i < n; i++) {
     Schedule &s = schedules[i];
@@ -278,6 +280,7 @@ void EDCore::row_relabel(int dir)
   shear_h += dir;
   const int carry = shear_h == 2 || shear_h == -1;
   shear_h -= 2 * dir * carry;
+  shear_periods();
   const int n = (int) schedules.size();
   for (int i = 0; i < n; i++) images[i].k[0] += dir * (row_band[schedules[i].c[1]] + carry);
 }
@@ -311,6 +314,8 @@ void EDCore::shear_bands()
   row_band.resize(ny);
   row_sheared.resize(ny);
   for (int r = 0; r < ny; r++) row_band[r] = (int) ((long) r * nbands / ny);
+  row_mid.resize(ny);
+  for (int r = 0; r < ny; r++) row_mid[r] = row_band[r] + 0.5;
   for (int r = 0; r < ny; r++) row_sheared[r] = r + 1 == ny || row_band[r + 1] != row_band[r];
   row_kind.resize(ny);
   for (int r = 0; r < ny; r++) {
