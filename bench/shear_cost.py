@@ -3,7 +3,9 @@
 """What a sheared box costs per collision against the same scene unsheared: bench/in.speed with
 and without -var shear S (Lees-Edwards through fix deform), 2D and 3D, in interleaved rounds;
 whole-process CPU time (user + sys) per collision of the whole run (equilibration included),
-the fastest of the rounds, and the ratio sheared / unsheared. With --callgrind the instructions
+the fastest of the rounds, and the ratio sheared / unsheared of the fastest, and the median of
+the ratios within a round (the two runs of a round side by side, on a machine whose speed
+drifts). With --callgrind the instructions
 of the whole process instead (valgrind, one round: reproducible, slow).
 
     /usr/bin/python3 bench/shear_cost.py [--dims 2 3] [--nside2 316] [--nside3 46] [--shear 0.05]
@@ -15,6 +17,7 @@ import csv
 import os
 import re
 import resource
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -58,7 +61,7 @@ def main(argv=None):
     ap.add_argument("--callgrind", action="store_true")
     a = ap.parse_args(argv)
     rounds = 1 if a.callgrind else a.rounds
-    best = {}
+    best, each = {}, {}
     for r in range(rounds):
         for dim in a.dims:
             nside = a.nside2 if dim == 2 else a.nside3
@@ -66,6 +69,7 @@ def main(argv=None):
                 total, cost = run(dim, nside, shear, a.ncoll, a.callgrind)
                 per = cost / total
                 key = (dim, shear)
+                each.setdefault(key, []).append(per)
                 if key not in best or per < best[key][2]:
                     best[key] = (nside ** dim, total, per)
                 print(f"round {r + 1} dim {dim} N {nside ** dim} shear {shear}: {total} collisions, "
@@ -74,13 +78,15 @@ def main(argv=None):
     scale = 1.0 if a.callgrind else 1e6
     rows = []
     print(f"\n| dim | N | collisions unsheared / sheared | {unit} per collision unsheared / sheared | "
-          f"sheared / unsheared |\n|---|---|---|---|---|")
+          f"sheared / unsheared | median of the rounds' ratios |\n|---|---|---|---|---|---|")
     for dim in a.dims:
         n, c0, p0 = best[(dim, 0.0)]
         _, c1, p1 = best[(dim, a.shear)]
+        med = statistics.median(b / u for u, b in zip(each[(dim, 0.0)], each[(dim, a.shear)]))
         rows.append({"dim": dim, "N": n, "shear": a.shear, "collisions_unsheared": c0, "collisions_sheared": c1,
-                     "cost_unsheared": p0 * scale, "cost_sheared": p1 * scale, "ratio": p1 / p0, "unit": unit})
-        print(f"| {dim} | {n} | {c0} / {c1} | {p0 * scale:.4g} / {p1 * scale:.4g} | x{p1 / p0:.2f} |")
+                     "cost_unsheared": p0 * scale, "cost_sheared": p1 * scale, "ratio": p1 / p0,
+                     "ratio_median": med, "unit": unit})
+        print(f"| {dim} | {n} | {c0} / {c1} | {p0 * scale:.4g} / {p1 * scale:.4g} | x{p1 / p0:.2f} | x{med:.2f} |")
     os.makedirs(os.path.join(HERE, "results"), exist_ok=True)
     with open(os.path.join(HERE, "results", "shear_cost.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
