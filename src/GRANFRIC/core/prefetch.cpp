@@ -54,33 +54,43 @@ void EDCore::prefetch_around(int i, bool deep) const
   if (c[0] < 1 || c[0] + 1 >= nc[0] || c[1] < 1 || c[1] + 1 >= nc[1] || c[2] < dz1 || c[2] + dz1 >= nc[2])
     return;
   const int *base = head.data() + (c[2] * nc[1] + c[1]) * nc[0] + c[0];
-  // (a sheared box: the 4 cells of the rows across a band boundary that sheared_spans takes;
-  // a row whose cells leave the grid is not asked for, lo > hi)
-  int lo[3] = {-1, -1, -1}, hi[3] = {1, 1, 1};
-  if (opt.shear)
-    for (int dy = -1; dy <= 1; dy += 2) {
-      if (!boundary_sheared(c[1], dy)) continue;
-      const int x0 = dy > 0 ? -shear_m - 2 : shear_m - 1;
-      const bool inside = c[0] + x0 >= 0 && c[0] + x0 + 3 < nc[0];
-      lo[dy + 1] = inside ? x0 : 1;
-      hi[dy + 1] = inside ? x0 + 3 : 0;
+  // n cells of a row from h on: the lines of the list heads, or each one's first particle (an
+  // empty cell, -1: particle 0, no branch)
+  auto cells = [&](const int *h, int n) __attribute__((always_inline)) {
+    if (!deep) {
+      __builtin_prefetch(h);
+      __builtin_prefetch(h + n - 1);
+      return;
     }
-  for (int dz = -dz1; dz <= dz1; dz++)
-    for (int dy = -1; dy <= 1; dy++) {
-      const int x0 = lo[dy + 1], x1 = hi[dy + 1];
-      if (x0 > x1) continue;
-      const int *row = base + (dz * nc[1] + dy) * nc[0];
-      if (!deep) {
-        __builtin_prefetch(row + x0);
-        __builtin_prefetch(row + x1);
-        continue;
-      }
-      for (int dx = x0; dx <= x1; dx++) {
-        const int j = row[dx] & ~(row[dx] >> 31);    // (an empty cell, -1: particle 0, no branch)
-        __builtin_prefetch(&flights[j]);
-        __builtin_prefetch(&images[j]);
-      }
+#pragma GCC unroll 4
+    for (int q = 0; q < n; q++) {
+      const int j = h[q] & ~(h[q] >> 31);
+      __builtin_prefetch(&flights[j]);
+      __builtin_prefetch(&images[j]);
     }
+  };
+  // the rows below, at and above the particle's in every layer, from x offsets x0 on, n_below
+  // and n_above cells in the rows below and above (known where it is inlined), 3 in its own
+  auto rows = [&](const int *x0, int n_below, int n_above) __attribute__((always_inline)) {
+    for (int dz = -dz1; dz <= dz1; dz++) {
+      const int *h = base + dz * nc[1] * nc[0];
+      cells(h - nc[0] + x0[0], n_below), cells(h + x0[1], 3), cells(h + nc[0] + x0[2], n_above);
+    }
+  };
+  static const int around3[3] = {-1, -1, -1};
+  if (!opt.shear) return rows(around3, 3, 3);
+  // (a sheared box: the 4 cells of a row across a band boundary that sheared_spans takes,
+  // where they lie inside the grid, else 4 around the particle's own x; which rows are across
+  // a boundary decided once, by the row's kind)
+  const int kind = row_kind[c[1]];
+  if (kind == ROW_INSIDE || nc[0] < 4) return rows(around3, 3, 3);
+  const int near = c[0] + 2 < nc[0] ? -1 : -2, fb = shear_m - 1, fa = -shear_m - 2;
+  const int xb = c[0] + fb >= 0 && c[0] + fb + 3 < nc[0] ? fb : near;
+  const int xa = c[0] + fa >= 0 && c[0] + fa + 3 < nc[0] ? fa : near;
+  const int up[3] = {-1, -1, xa}, down[3] = {xb, -1, -1}, both[3] = {xb, -1, xa};
+  if (kind == ROW_EDGE_UP) return rows(up, 3, 4);
+  if (kind == ROW_EDGE_DOWN) return rows(down, 4, 3);
+  rows(both, 4, 4);
 }
 
 // The events ahead, as the queue's walk along its next buckets meets their particles
